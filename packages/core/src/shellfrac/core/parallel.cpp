@@ -1,0 +1,127 @@
+#include "shellfrac/core/parallel.hpp"
+
+#include <exception>
+
+#include "shellfrac/core/error.hpp"
+
+namespace shellfrac::parallel {
+
+int rank(MPI_Comm comm) {
+  int r = 0;
+  MPI_Comm_rank(comm, &r);
+  return r;
+}
+
+int size(MPI_Comm comm) {
+  int s = 1;
+  MPI_Comm_size(comm, &s);
+  return s;
+}
+
+const char* ByteReader::take(std::size_t n) {
+  SHELLFRAC_REQUIRE(pos_ + n <= buf_.size(), "ByteReader: read past the end of the buffer");
+  const char* p = buf_.data() + pos_;
+  pos_ += n;
+  return p;
+}
+
+void broadcast(std::vector<char>& buf, int root, MPI_Comm comm) {
+  std::uint64_t n = buf.size();
+  MPI_Bcast(&n, 1, MPI_UINT64_T, root, comm);
+  if (rank(comm) != root) buf.resize(n);
+  // MPI counts are int: send in chunks so meshes larger than 2 GiB still broadcast.
+  constexpr std::uint64_t chunk = 1u << 30;
+  for (std::uint64_t off = 0; off < n; off += chunk) {
+    const int len = static_cast<int>(std::min<std::uint64_t>(chunk, n - off));
+    MPI_Bcast(buf.data() + off, len, MPI_CHAR, root, comm);
+  }
+}
+
+void broadcast(std::string& s, int root, MPI_Comm comm) {
+  std::vector<char> buf(s.begin(), s.end());
+  broadcast(buf, root, comm);
+  s.assign(buf.begin(), buf.end());
+}
+
+namespace {
+// kind: 0 = ok, 1 = InputError, 2 = other error
+int run_capturing(const std::function<void()>& fn, std::string& msg) {
+  try {
+    fn();
+    return 0;
+  } catch (const InputError& e) {
+    msg = e.what();
+    return 1;
+  } catch (const std::exception& e) {
+    msg = e.what();
+    return 2;
+  }
+}
+
+[[noreturn]] void rethrow(int kind, const std::string& msg) {
+  if (kind == 1) throw InputError(msg);
+  throw Error(msg);
+}
+}  // namespace
+
+void on_root_then_agree(const std::function<void()>& fn, int root, MPI_Comm comm) {
+  std::string msg;
+  int kind = 0;
+  if (rank(comm) == root) kind = run_capturing(fn, msg);
+  MPI_Bcast(&kind, 1, MPI_INT, root, comm);
+  if (kind == 0) return;
+  broadcast(msg, root, comm);
+  rethrow(kind, msg);
+}
+
+void on_all_then_agree(const std::function<void()>& fn, MPI_Comm comm) {
+  std::string msg;
+  const int kind = run_capturing(fn, msg);
+  const int me = rank(comm);
+  int failing = kind != 0 ? me : size(comm);
+  int first = 0;
+  MPI_Allreduce(&failing, &first, 1, MPI_INT, MPI_MIN, comm);
+  if (first == size(comm)) return;
+  int k = kind;
+  MPI_Bcast(&k, 1, MPI_INT, first, comm);
+  broadcast(msg, first, comm);
+  if (size(comm) > 1) msg = "rank " + std::to_string(first) + ": " + msg;
+  rethrow(k, msg);
+}
+
+bool any(bool local, MPI_Comm comm) {
+  int l = local ? 1 : 0, g = 0;
+  MPI_Allreduce(&l, &g, 1, MPI_INT, MPI_LOR, comm);
+  return g != 0;
+}
+
+std::int64_t sum(std::int64_t local, MPI_Comm comm) {
+  std::int64_t g = 0;
+  MPI_Allreduce(&local, &g, 1, MPI_INT64_T, MPI_SUM, comm);
+  return g;
+}
+
+double max(double local, MPI_Comm comm) {
+  double g = 0;
+  MPI_Allreduce(&local, &g, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return g;
+}
+
+template <class T>
+std::vector<T> all_gather(const std::vector<T>& local, MPI_Comm comm) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  const int np = size(comm);
+  int my_bytes = static_cast<int>(local.size() * sizeof(T));
+  std::vector<int> counts(np), displs(np, 0);
+  MPI_Allgather(&my_bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  for (int r = 1; r < np; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+  std::vector<T> out((displs[np - 1] + counts[np - 1]) / sizeof(T));
+  MPI_Allgatherv(local.data(), my_bytes, MPI_BYTE, out.data(), counts.data(), displs.data(), MPI_BYTE, comm);
+  return out;
+}
+
+template std::vector<int> all_gather(const std::vector<int>&, MPI_Comm);
+template std::vector<std::int64_t> all_gather(const std::vector<std::int64_t>&, MPI_Comm);
+template std::vector<double> all_gather(const std::vector<double>&, MPI_Comm);
+
+}  // namespace shellfrac::parallel

@@ -1,0 +1,253 @@
+#include "shellfrac/core/parameters.hpp"
+
+#include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <Teuchos_XMLParameterListCoreHelpers.hpp>
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+#include "shellfrac/core/error.hpp"
+#include "shellfrac/core/parallel.hpp"
+
+namespace shellfrac::params {
+
+namespace {
+
+/// Number range validator with clear messages (the Teuchos one reports neither units nor open bounds).
+template <class T>
+class RangeValidator : public Teuchos::ParameterEntryValidator {
+ public:
+  RangeValidator(T min, T max, bool open_min, bool open_max)
+      : min_(min), max_(max), open_min_(open_min), open_max_(open_max) {}
+
+  const std::string getXMLTypeName() const override { return "shellfracRangeValidator"; }
+
+  void printDoc(const std::string& doc, std::ostream& out) const override { out << "# " << doc << " " << range() << "\n"; }
+
+  ValidStringsList validStringValues() const override { return Teuchos::null; }
+
+  void validate(const Teuchos::ParameterEntry& entry, const std::string& name,
+                const std::string& sublist) const override {
+    const T v = Teuchos::any_cast<T>(entry.getAny());
+    const bool ok_min = open_min_ ? v > min_ : v >= min_;
+    const bool ok_max = open_max_ ? v < max_ : v <= max_;
+    if (!(ok_min && ok_max) || (std::is_floating_point_v<T> && !std::isfinite(static_cast<double>(v)))) {
+      std::ostringstream os;
+      os << "value " << v << " is out of range: must be " << range();
+      throw Teuchos::Exceptions::InvalidParameterValue(os.str());
+    }
+  }
+
+  std::string range() const {
+    std::ostringstream os;
+    const bool has_min = min_ > std::numeric_limits<T>::lowest();
+    const bool has_max = max_ < std::numeric_limits<T>::max();
+    if (has_min && has_max)
+      os << "in " << (open_min_ ? "(" : "[") << min_ << ", " << max_ << (open_max_ ? ")" : "]");
+    else if (has_min)
+      os << (open_min_ ? "> " : ">= ") << min_;
+    else if (has_max)
+      os << (open_max_ ? "< " : "<= ") << max_;
+    else
+      os << "finite";
+    return os.str();
+  }
+
+ private:
+  T min_, max_;
+  bool open_min_, open_max_;
+};
+
+std::string type_name(const Teuchos::ParameterEntry& e) {
+  if (e.isList()) return "ParameterList";
+  const std::string t = e.getAny().typeName();
+  if (t == "d") return "double";
+  if (t == "i") return "int";
+  if (t == "b") return "bool";
+  if (t.find("basic_string") != std::string::npos) return "string";
+  return e.getAny().typeName();
+}
+
+std::string list_names(const ParameterList& valid) {
+  std::ostringstream os;
+  bool first = true;
+  for (auto it = valid.begin(); it != valid.end(); ++it) {
+    os << (first ? "" : ", ") << "'" << valid.name(it) << "'";
+    if (valid.entry(it).isList()) os << " (sublist)";
+    first = false;
+  }
+  return first ? std::string("(none)") : os.str();
+}
+
+std::string closest(const std::string& name, const ParameterList& valid) {
+  std::string best;
+  std::size_t best_d = std::numeric_limits<std::size_t>::max();
+  auto lower = [](std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+    return s;
+  };
+  for (auto it = valid.begin(); it != valid.end(); ++it) {
+    const auto d = edit_distance(lower(name), lower(valid.name(it)));
+    if (d < best_d) best_d = d, best = valid.name(it);
+  }
+  return best_d <= std::max<std::size_t>(2, name.size() / 3) ? best : std::string();
+}
+
+std::string value_string(const Teuchos::ParameterEntry& e) {
+  std::ostringstream os;
+  os << e.getAny();
+  return os.str();
+}
+
+}  // namespace
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+RCP<ParameterList> read_deck(const std::string& file, MPI_Comm comm) {
+  std::string text;
+  parallel::on_root_then_agree(
+      [&] {
+        std::ifstream in(file);
+        SHELLFRAC_INPUT_REQUIRE(in.good(), file << ": cannot open the input deck (does the file exist and is it readable?)");
+        std::ostringstream ss;
+        ss << in.rdbuf();
+        text = ss.str();
+        try {
+          Teuchos::getParametersFromXmlString(text);
+        } catch (const std::exception& e) {
+          SHELLFRAC_INPUT_REQUIRE(false, file << ": not a valid Teuchos XML parameter list: " << e.what());
+        }
+      },
+      0, comm);
+  parallel::broadcast(text, 0, comm);
+  return Teuchos::getParametersFromXmlString(text);
+}
+
+void validate(ParameterList& user, const ParameterList& valid, const Context& ctx) {
+  // 1. names and types
+  for (auto it = user.begin(); it != user.end(); ++it) {
+    const std::string& name = user.name(it);
+    const Teuchos::ParameterEntry* v = valid.getEntryPtr(name);
+    if (v == nullptr) {
+      std::ostringstream os;
+      os << ctx.file << ": unknown parameter '" << name << "' in '" << ctx.path << "'.";
+      const std::string guess = closest(name, valid);
+      if (!guess.empty()) os << " Did you mean '" << guess << "'?";
+      os << " Valid names here: " << list_names(valid) << ".";
+      throw InputError(os.str());
+    }
+    Teuchos::ParameterEntry& u = user.getEntry(name);
+    const std::string ut = type_name(u), vt = type_name(*v);
+    if (ut == "int" && vt == "double") {  // accept 2 where 2.0 is meant
+      user.set(name, static_cast<double>(Teuchos::getValue<int>(u)), v->docString());
+      continue;
+    }
+    SHELLFRAC_INPUT_REQUIRE(ut == vt, ctx.file << ": parameter '" << ctx.path << "->" << name << "' is a " << ut
+                                               << " but must be a " << vt
+                                               << (vt == "ParameterList" ? " (a <ParameterList name=...> element)" : "")
+                                               << ". " << v->docString());
+  }
+  // 2. values
+  for (auto it = user.begin(); it != user.end(); ++it) {
+    const std::string& name = user.name(it);
+    const Teuchos::ParameterEntry& v = valid.getEntry(name);
+    auto validator = v.validator();
+    if (validator.is_null() || v.isList()) continue;
+    try {
+      validator->validate(user.getEntry(name), name, ctx.path);
+    } catch (const std::exception& e) {
+      std::ostringstream os;
+      os << ctx.file << ": invalid value '" << value_string(user.getEntry(name)) << "' for parameter '" << ctx.path
+         << "->" << name << "' (" << v.docString() << "): ";
+      if (auto choices = validator->validStringValues(); !choices.is_null()) {
+        os << "valid choices are";
+        for (const auto& c : *choices) os << " '" << c << "'";
+        os << ".";
+      } else {
+        os << e.what();
+      }
+      throw InputError(os.str());
+    }
+  }
+  // 3. defaults (and the int->string mapping of enumerations)
+  try {
+    user.validateParametersAndSetDefaults(valid, 0);
+  } catch (const std::exception& e) {
+    throw InputError(ctx.file + ": in '" + ctx.path + "': " + e.what());
+  }
+}
+
+RCP<const Teuchos::ParameterEntryValidator> double_range(double min, double max, bool open_min, bool open_max) {
+  return Teuchos::rcp(new RangeValidator<double>(min, max, open_min, open_max));
+}
+RCP<const Teuchos::ParameterEntryValidator> positive_double() {
+  return double_range(0.0, std::numeric_limits<double>::max(), true, false);
+}
+RCP<const Teuchos::ParameterEntryValidator> non_negative_double() {
+  return double_range(0.0, std::numeric_limits<double>::max(), false, false);
+}
+RCP<const Teuchos::ParameterEntryValidator> int_range(int min, int max) {
+  return Teuchos::rcp(new RangeValidator<int>(min, max, false, false));
+}
+
+void set_choice(ParameterList& pl, const std::string& name, const std::string& default_value, const std::string& doc,
+                const std::vector<std::string>& choices) {
+  Teuchos::Array<std::string> c(choices.begin(), choices.end());
+  pl.set(name, default_value, doc, Teuchos::rcp(new Teuchos::StringValidator(c)));
+}
+
+void write_documented_xml(std::ostream& os, const ParameterList& valid, int indent) {
+  const std::string pad(indent, ' ');
+  if (indent == 0) os << "<ParameterList name=\"" << valid.name() << "\">\n";
+  for (auto it = valid.begin(); it != valid.end(); ++it) {
+    const std::string& name = valid.name(it);
+    const auto& e = valid.entry(it);
+    const std::string in = pad + "  ";
+    if (e.isList()) {
+      const auto& sub = valid.sublist(name);
+      if (!e.docString().empty()) os << in << "<!-- " << e.docString() << " -->\n";
+      os << in << "<ParameterList name=\"" << name << "\">\n";
+      write_documented_xml(os, sub, indent + 2);
+      os << in << "</ParameterList>\n";
+      continue;
+    }
+    std::ostringstream comment;
+    comment << e.docString();
+    if (auto v = e.validator(); !v.is_null()) {
+      if (auto choices = v->validStringValues(); !choices.is_null()) {
+        comment << " Choices:";
+        for (const auto& c : *choices) comment << " '" << c << "'";
+        comment << ".";
+      } else if (auto r = Teuchos::rcp_dynamic_cast<const RangeValidator<double>>(v); !r.is_null()) {
+        comment << " Range: " << r->range() << ".";
+      } else if (auto ri = Teuchos::rcp_dynamic_cast<const RangeValidator<int>>(v); !ri.is_null()) {
+        comment << " Range: " << ri->range() << ".";
+      }
+    }
+    std::string value = value_string(e);
+    if (type_name(e) == "bool") value = Teuchos::getValue<bool>(e) ? "true" : "false";
+    if (type_name(e) == "double") {
+      std::ostringstream ds;
+      ds << std::setprecision(17) << Teuchos::getValue<double>(e);
+      value = ds.str();
+    }
+    os << in << "<!-- " << comment.str() << " -->\n";
+    os << in << "<Parameter name=\"" << name << "\" type=\"" << type_name(e) << "\" value=\"" << value << "\"/>\n";
+  }
+  if (indent == 0) os << "</ParameterList>\n";
+}
+
+}  // namespace shellfrac::params

@@ -1,0 +1,36 @@
+#pragma once
+/// \file element_maps.hpp
+/// Tpetra side of the distributed mesh (heavy header: include only where Tpetra objects are used).
+/// Element rows: `owned` is one-to-one; `overlap` = owned GIDs first then ghosts (the one ghost layer).
+/// Data flow every step (style-anchors §10.7): owned -> Import(INSERT) -> overlap -> kernels ->
+/// Export(ADD) -> owned.
+#include <Tpetra_Export.hpp>
+#include <Tpetra_Import.hpp>
+#include <Tpetra_Map.hpp>
+#include <Tpetra_MultiVector.hpp>
+#include <type_traits>
+
+#include "shellfrac/core/types.hpp"
+
+namespace shellfrac::dist {
+
+using map_type = Tpetra::Map<>;
+using tpetra_lo = map_type::local_ordinal_type;
+using tpetra_go = map_type::global_ordinal_type;
+using node_type = map_type::node_type;
+using import_type = Tpetra::Import<tpetra_lo, tpetra_go, node_type>;
+using export_type = Tpetra::Export<tpetra_lo, tpetra_go, node_type>;
+using multivector_type = Tpetra::MultiVector<double, tpetra_lo, tpetra_go, node_type>;
+using execution_space = multivector_type::execution_space;
+static_assert(std::is_same_v<tpetra_go, long long> || sizeof(tpetra_go) == sizeof(GlobalId),
+              "shellfrac::GlobalId must match Tpetra's global ordinal width");
+
+/// Maps and transfers of element rows, built once.
+struct ElementMaps {
+  Teuchos::RCP<const map_type> owned;    ///< one-to-one: the elements this rank owns
+  Teuchos::RCP<const map_type> overlap;  ///< owned then ghosts
+  Teuchos::RCP<const import_type> importer;  ///< owned -> overlap (ghost values from their owners)
+  Teuchos::RCP<const export_type> exporter;  ///< overlap -> owned (ADD ghost contributions to owners)
+};
+
+}  // namespace shellfrac::dist

@@ -1,0 +1,106 @@
+#pragma once
+/// \file exodus_results.hpp
+/// DG results in Exodus II (style-anchors §7, docs/output.md).
+///  * Nodes are DG nodes: every element writes its own copies (3 for P1, 6 for P2), so discontinuities
+///    and cracks open in ParaView. Global DG node id = element_gid * nodes_per_element + a (written +1 in
+///    the node id map); element id map = element_gid + 1.
+///  * Element blocks TRISHELL3/TRISHELL6, one per mesh block (same ids and names in every file, possibly
+///    empty on a rank).
+///  * Nodal vectors are written as <name>_x/_y/_z (ParaView glues them; "displ" is applied as displacement
+///    automatically); element scalars as element variables in every block.
+///  * Parallel: np == 1 writes `path`; np > 1 writes one file per rank `path.<np>.<rank>` (Nemesis naming,
+///    zero-padded to the width of np, e.g. run.exo.04.01), which ParaView opens as one data set;
+///    shellfrac_exojoin merges a set into one file.
+///  * Each step is flushed (ex_update) so a crashed run leaves a readable file.
+#include <mpi.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "shellfrac/core/types.hpp"
+
+namespace shellfrac::io {
+
+/// What one rank writes: its owned elements and their DG nodes. Plain data (no Tpetra).
+struct ResultsLayout {
+  std::string title = "shellfrac";
+  int nodes_per_element = 3;                ///< 3 or 6
+  std::vector<GlobalId> element_gids;       ///< this rank's elements, ascending
+  std::vector<int> element_block;           ///< per element: index into block_names/block_ids
+  std::vector<std::string> block_names;     ///< all mesh blocks (same on every rank)
+  std::vector<int> block_ids;               ///< Exodus ids of block_names
+  std::vector<Vec3> node_coords;            ///< element-major: element i, node a -> [i*npe + a] (reference)
+  std::vector<std::string> nodal_vectors;   ///< e.g. {"displ", "velocity", "director"}
+  std::vector<std::string> element_scalars; ///< e.g. {"block", "rank"}
+  std::vector<std::string> info;            ///< information records (e.g. the expanded input deck lines)
+};
+
+/// File name of rank `rank` of `np` for base path `path` (see above).
+std::string rank_file_name(const std::string& path, int np, int rank);
+
+/// Writes time steps of DG results; one file per rank (or one file on one rank). Collective constructor.
+class ExodusResultsWriter {
+ public:
+  /// Creates (overwrites) the file(s) and writes the mesh part. Throws Error naming the file on failure.
+  ExodusResultsWriter(const std::string& path, const ResultsLayout& layout, MPI_Comm comm = MPI_COMM_WORLD);
+  ~ExodusResultsWriter();
+  ExodusResultsWriter(const ExodusResultsWriter&) = delete;
+  ExodusResultsWriter& operator=(const ExodusResultsWriter&) = delete;
+
+  /// Appends a step. nodal[v] has num_nodes entries (element-major, as node_coords) for layout.nodal_vectors[v];
+  /// element[s] has one value per element for layout.element_scalars[s]. Returns the 1-based step index.
+  int write_step(double time, const std::vector<std::vector<Vec3>>& nodal,
+                 const std::vector<std::vector<double>>& element);
+
+  /// The file this rank writes.
+  const std::string& file_name() const { return file_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::string file_;
+};
+
+/// A results data set read back: one file or a whole per-rank set, merged and sorted by element global id.
+struct ExodusResults {
+  int nodes_per_element = 3;
+  std::vector<GlobalId> element_gids;   ///< ascending
+  std::vector<int> element_block_ids;   ///< Exodus block id per element
+  std::vector<std::string> block_names; ///< by block id order as in the file(s)
+  std::vector<int> block_ids;
+  std::vector<Vec3> node_coords;        ///< element-major, as written
+  std::vector<double> times;
+  std::vector<std::string> nodal_names;    ///< scalar names as stored, e.g. displ_x
+  std::vector<std::string> element_names;
+  /// nodal[step][var][node], element[step][var][element]
+  std::vector<std::vector<std::vector<double>>> nodal, element;
+  std::vector<std::string> info;
+  int num_files = 1;
+};
+
+/// Reads `path` if it exists; otherwise the per-rank set `path.<np>.<rank>` (np found from the directory).
+/// Throws InputError naming the path if neither exists or a file is not a shellfrac-style results file.
+ExodusResults read_results(const std::string& path);
+
+/// Writes a merged data set as one file (the join tool).
+void write_results(const ExodusResults& results, const std::string& path);
+
+/// Comparison tolerances: |a - b| <= max(abs, rel * max(|a|, |b|)) per variable; "coordinates" for coords.
+struct CompareTolerances {
+  double default_abs = 0.0, default_rel = 0.0;
+  struct Entry {
+    std::string name;
+    double abs = 0, rel = 0;
+  };
+  std::vector<Entry> per_variable;
+  /// Parses a tolerance file: lines "<variable|default|coordinates> [absolute A] [relative R]", '#' comments.
+  static CompareTolerances from_file(const std::string& path);
+};
+
+/// Compares two data sets by element global id: same elements, blocks, times, variable names; coordinates and
+/// values within tolerance. Returns a list of human-readable differences (empty = equal), at most max_report.
+std::vector<std::string> compare_results(const ExodusResults& a, const ExodusResults& b,
+                                         const CompareTolerances& tol, std::size_t max_report = 20);
+
+}  // namespace shellfrac::io

@@ -1,0 +1,303 @@
+#include "shellfrac/mesh/serial_mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "shellfrac/core/error.hpp"
+#include "shellfrac/core/parallel.hpp"
+#include "shellfrac/disc/triangle_basis.hpp"
+#include "shellfrac/mesh/edge_incidence.hpp"
+#include "shellfrac/mesh/vec3_ops.hpp"
+
+namespace shellfrac::mesh {
+
+Vec3 ExactSurface::project(const Vec3& x) const {
+  if (kind == Kind::None) return x;
+  const Vec3 d = sub(x, axis_point);
+  const double along = dot(d, axis_direction);
+  const Vec3 radial = sub(d, scale(along, axis_direction));
+  const double r = norm(radial);
+  if (r == 0.0) return x;
+  return add(add(axis_point, scale(along, axis_direction)), scale(radius / r, radial));
+}
+
+double vertex_area(const SerialMesh& mesh, GlobalId e) {
+  const Vec3& a = mesh.coords[mesh.node(e, 0)];
+  const Vec3& b = mesh.coords[mesh.node(e, 1)];
+  const Vec3& c = mesh.coords[mesh.node(e, 2)];
+  return 0.5 * norm(cross(sub(b, a), sub(c, a)));
+}
+
+namespace {
+
+template <class Set>
+void check_ids_and_names(const std::vector<Set>& sets, const char* kind, const std::string& source) {
+  std::set<int> ids;
+  std::set<std::string> names;
+  for (const auto& s : sets) {
+    SHELLFRAC_INPUT_REQUIRE(s.id > 0, source << ": " << kind << " '" << s.name << "' has id " << s.id
+                                             << "; ids must be positive");
+    SHELLFRAC_INPUT_REQUIRE(ids.insert(s.id).second, source << ": two " << kind << "s have id " << s.id);
+    SHELLFRAC_INPUT_REQUIRE(!s.name.empty(), source << ": " << kind << " " << s.id << " has an empty name");
+    SHELLFRAC_INPUT_REQUIRE(names.insert(s.name).second, source << ": two " << kind << "s are named '" << s.name << "'");
+  }
+}
+
+template <class T>
+void check_sorted_in_range(const std::vector<T>& v, GlobalId n, const char* kind, const std::string& name,
+                           const char* what, const std::string& source) {
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    SHELLFRAC_INPUT_REQUIRE(v[i] >= 0 && v[i] < n, source << ": " << kind << " '" << name << "' refers to " << what
+                                                          << " " << v[i] << ", but the mesh has " << n << " " << what
+                                                          << "s");
+    SHELLFRAC_INPUT_REQUIRE(i == 0 || v[i - 1] < v[i],
+                            source << ": " << kind << " '" << name << "' is not sorted/unique at entry " << i);
+  }
+}
+
+/// Node-set membership of a node created on the edge (a, b) (rule documented in serial_mesh.hpp).
+/// `uses[first, last)` are the uses of that edge; third(e, k) is the vertex of e opposite local edge k.
+template <class ThirdFn>
+bool joins_set(const std::vector<char>& member, GlobalId a, GlobalId b, const std::vector<detail::EdgeUse>& uses,
+               std::size_t first, std::size_t last, ThirdFn third) {
+  if (!member[a] || !member[b]) return false;
+  if (last - first == 1) return true;  // boundary edge
+  for (std::size_t u = first; u < last; ++u)
+    if (member[third(uses[u].element, uses[u].local_edge)]) return false;
+  return true;
+}
+
+/// Adds the created edge nodes to node sets. edge_nodes[g] = node made on the g-th edge group of `uses`.
+template <class ThirdFn>
+void extend_node_sets(SerialMesh& mesh, GlobalId num_nodes_before, const std::vector<detail::EdgeUse>& uses,
+                      const std::vector<GlobalId>& edge_nodes, ThirdFn third) {
+  for (auto& ns : mesh.node_sets) {
+    std::vector<char> member(mesh.coords.size(), 0);
+    for (GlobalId n : ns.nodes) member[n] = 1;
+    std::size_t g = 0;
+    detail::for_each_edge(uses, [&](std::size_t first, std::size_t last) {
+      if (joins_set(member, uses[first].a, uses[first].b, uses, first, last, third)) ns.nodes.push_back(edge_nodes[g]);
+      ++g;
+    });
+    std::sort(ns.nodes.begin(), ns.nodes.end());
+  }
+  (void)num_nodes_before;
+}
+
+/// Children of a refined triangle, as indices into the parent's 6 P2 node positions (vertices 0,1,2,
+/// mid-sides 3,4,5): corner children at vertices 1, 2, 3, then the centre one. All counter-clockwise.
+constexpr int child_nodes[4][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}, {4, 5, 3}};
+
+/// Maps sets to the children: parent edge k -> (child k, edge k) and (child (k+1)%3, edge k).
+void refine_sets(SerialMesh& mesh) {
+  for (auto& ss : mesh.side_sets) {
+    std::vector<std::pair<GlobalId, int>> out;
+    for (std::size_t i = 0; i < ss.elements.size(); ++i) {
+      const GlobalId e = ss.elements[i];
+      const int k = ss.local_edges[i];
+      out.push_back({4 * e + k, k});
+      out.push_back({4 * e + (k + 1) % 3, k});
+    }
+    std::sort(out.begin(), out.end());
+    ss.elements.clear();
+    ss.local_edges.clear();
+    for (auto& [e, k] : out) ss.elements.push_back(e), ss.local_edges.push_back(k);
+  }
+  for (auto& es : mesh.element_sets) {
+    std::vector<GlobalId> out;
+    for (GlobalId e : es.elements)
+      for (int c = 0; c < 4; ++c) out.push_back(4 * e + c);
+    es.elements = out;
+  }
+  std::vector<int> blocks(4 * mesh.element_block.size());
+  for (std::size_t e = 0; e < mesh.element_block.size(); ++e)
+    for (int c = 0; c < 4; ++c) blocks[4 * e + c] = mesh.element_block[e];
+  mesh.element_block = blocks;
+}
+
+}  // namespace
+
+void check_mesh(const SerialMesh& mesh) {
+  const std::string& src = mesh.source;
+  SHELLFRAC_INPUT_REQUIRE(mesh.nodes_per_element == 3 || mesh.nodes_per_element == 6,
+                          src << ": elements must have 3 or 6 nodes, not " << mesh.nodes_per_element);
+  const GlobalId ne = mesh.num_elements(), nn = mesh.num_nodes();
+  SHELLFRAC_INPUT_REQUIRE(ne > 0, src << ": the mesh has no triangle elements");
+  SHELLFRAC_INPUT_REQUIRE(static_cast<GlobalId>(mesh.connectivity.size()) == ne * mesh.nodes_per_element,
+                          src << ": connectivity has " << mesh.connectivity.size() << " entries, expected "
+                              << ne * mesh.nodes_per_element);
+  SHELLFRAC_INPUT_REQUIRE(!mesh.blocks.empty(), src << ": the mesh has no element block");
+  check_ids_and_names(mesh.blocks, "element block", src);
+  check_ids_and_names(mesh.node_sets, "node set", src);
+  check_ids_and_names(mesh.side_sets, "side set", src);
+  check_ids_and_names(mesh.element_sets, "element set", src);
+  for (const auto& c : mesh.coords)
+    SHELLFRAC_INPUT_REQUIRE(std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]),
+                            src << ": a node has a non-finite coordinate");
+  for (GlobalId e = 0; e < ne; ++e) {
+    const int b = mesh.element_block[e];
+    SHELLFRAC_INPUT_REQUIRE(b >= 0 && b < static_cast<int>(mesh.blocks.size()),
+                            src << ": element " << e + 1 << " has no valid block");
+    for (int a = 0; a < mesh.nodes_per_element; ++a) {
+      const GlobalId n = mesh.node(e, a);
+      SHELLFRAC_INPUT_REQUIRE(n >= 0 && n < nn, src << ": element " << e + 1 << " refers to node " << n + 1
+                                                    << ", but the mesh has " << nn << " nodes");
+      for (int c = 0; c < a; ++c)
+        SHELLFRAC_INPUT_REQUIRE(mesh.node(e, c) != n, src << ": element " << e + 1 << " uses node " << n + 1 << " twice");
+    }
+    // Zero-area (collinear) triangles have no normal and no stable time step.
+    const Vec3 &p = mesh.coords[mesh.node(e, 0)], &q = mesh.coords[mesh.node(e, 1)], &r = mesh.coords[mesh.node(e, 2)];
+    const double h2 = std::max({norm2(sub(q, p)), norm2(sub(r, q)), norm2(sub(p, r))});
+    SHELLFRAC_INPUT_REQUIRE(vertex_area(mesh, e) > 1e-12 * h2,
+                            src << ": element " << e + 1 << " is degenerate (its vertices are collinear)");
+  }
+  for (const auto& s : mesh.node_sets) check_sorted_in_range(s.nodes, nn, "node set", s.name, "node", src);
+  for (const auto& s : mesh.element_sets) check_sorted_in_range(s.elements, ne, "element set", s.name, "element", src);
+  for (const auto& s : mesh.side_sets) {
+    SHELLFRAC_INPUT_REQUIRE(s.elements.size() == s.local_edges.size(),
+                            src << ": side set '" << s.name << "' has mismatched element/edge lists");
+    for (std::size_t i = 0; i < s.elements.size(); ++i) {
+      SHELLFRAC_INPUT_REQUIRE(s.elements[i] >= 0 && s.elements[i] < ne,
+                              src << ": side set '" << s.name << "' refers to element " << s.elements[i] + 1
+                                  << ", but the mesh has " << ne << " elements");
+      SHELLFRAC_INPUT_REQUIRE(s.local_edges[i] >= 0 && s.local_edges[i] < 3,
+                              src << ": side set '" << s.name << "' has an invalid edge number " << s.local_edges[i]);
+    }
+  }
+}
+
+std::vector<char> pack(const SerialMesh& m) {
+  parallel::ByteWriter w;
+  w.put(m.nodes_per_element);
+  w.put_vector(m.coords);
+  w.put_vector(m.connectivity);
+  w.put_vector(m.element_block);
+  w.put<std::uint64_t>(m.blocks.size());
+  for (const auto& b : m.blocks) w.put_string(b.name), w.put(b.id);
+  w.put<std::uint64_t>(m.node_sets.size());
+  for (const auto& s : m.node_sets) w.put_string(s.name), w.put(s.id), w.put_vector(s.nodes);
+  w.put<std::uint64_t>(m.side_sets.size());
+  for (const auto& s : m.side_sets) w.put_string(s.name), w.put(s.id), w.put_vector(s.elements), w.put_vector(s.local_edges);
+  w.put<std::uint64_t>(m.element_sets.size());
+  for (const auto& s : m.element_sets) w.put_string(s.name), w.put(s.id), w.put_vector(s.elements);
+  w.put(m.surface.kind);
+  w.put(m.surface.axis_point);
+  w.put(m.surface.axis_direction);
+  w.put(m.surface.radius);
+  w.put_string(m.source);
+  return std::move(w.buffer());
+}
+
+SerialMesh unpack(const std::vector<char>& buffer) {
+  parallel::ByteReader r(buffer);
+  SerialMesh m;
+  m.nodes_per_element = r.get<int>();
+  m.coords = r.get_vector<Vec3>();
+  m.connectivity = r.get_vector<GlobalId>();
+  m.element_block = r.get_vector<int>();
+  m.blocks.resize(r.get<std::uint64_t>());
+  for (auto& b : m.blocks) b.name = r.get_string(), b.id = r.get<int>();
+  m.node_sets.resize(r.get<std::uint64_t>());
+  for (auto& s : m.node_sets) s.name = r.get_string(), s.id = r.get<int>(), s.nodes = r.get_vector<GlobalId>();
+  m.side_sets.resize(r.get<std::uint64_t>());
+  for (auto& s : m.side_sets) {
+    s.name = r.get_string();
+    s.id = r.get<int>();
+    s.elements = r.get_vector<GlobalId>();
+    s.local_edges = r.get_vector<int>();
+  }
+  m.element_sets.resize(r.get<std::uint64_t>());
+  for (auto& s : m.element_sets) s.name = r.get_string(), s.id = r.get<int>(), s.elements = r.get_vector<GlobalId>();
+  m.surface.kind = r.get<ExactSurface::Kind>();
+  m.surface.axis_point = r.get<Vec3>();
+  m.surface.axis_direction = r.get<Vec3>();
+  m.surface.radius = r.get<double>();
+  m.source = r.get_string();
+  return m;
+}
+
+void broadcast(SerialMesh& mesh, int root) {
+  std::vector<char> buf;
+  if (parallel::rank() == root) buf = pack(mesh);
+  parallel::broadcast(buf, root);
+  if (parallel::rank() != root) mesh = unpack(buf);
+}
+
+void promote_to_p2(SerialMesh& mesh) {
+  if (mesh.nodes_per_element == 6) return;
+  const GlobalId ne = mesh.num_elements();
+  const auto& conn = mesh.connectivity;
+  const auto uses = detail::edge_uses(ne, [&](GlobalId e, int i) { return conn[3 * e + i]; });
+  std::vector<GlobalId> p2(6 * ne);
+  for (GlobalId e = 0; e < ne; ++e)
+    for (int i = 0; i < 3; ++i) p2[6 * e + i] = conn[3 * e + i];
+  const GlobalId nn0 = mesh.num_nodes();
+  std::vector<GlobalId> edge_nodes;
+  detail::for_each_edge(uses, [&](std::size_t first, std::size_t last) {
+    const GlobalId m = mesh.num_nodes();
+    mesh.coords.push_back(mesh.surface.project(scale(0.5, add(mesh.coords[uses[first].a], mesh.coords[uses[first].b]))));
+    edge_nodes.push_back(m);
+    for (std::size_t u = first; u < last; ++u) p2[6 * uses[u].element + 3 + uses[u].local_edge] = m;
+  });
+  extend_node_sets(mesh, nn0, uses, edge_nodes, [&](GlobalId e, int k) { return conn[3 * e + (k + 2) % 3]; });
+  mesh.connectivity = std::move(p2);
+  mesh.nodes_per_element = 6;
+}
+
+void refine_uniform(SerialMesh& mesh) {
+  const GlobalId ne = mesh.num_elements();
+  const int npe = mesh.nodes_per_element;
+  const GlobalId nn0 = mesh.num_nodes();
+  // parent_nodes[6e + i]: the parent's 6 P2 node positions (vertices, then edge mid-points).
+  std::vector<GlobalId> parent_nodes(6 * ne);
+  if (npe == 6) {
+    parent_nodes = mesh.connectivity;
+  } else {
+    const auto& conn = mesh.connectivity;
+    const auto uses = detail::edge_uses(ne, [&](GlobalId e, int i) { return conn[3 * e + i]; });
+    std::vector<GlobalId> edge_nodes;
+    detail::for_each_edge(uses, [&](std::size_t first, std::size_t last) {
+      const GlobalId m = mesh.num_nodes();
+      mesh.coords.push_back(
+          mesh.surface.project(scale(0.5, add(mesh.coords[uses[first].a], mesh.coords[uses[first].b]))));
+      edge_nodes.push_back(m);
+      for (std::size_t u = first; u < last; ++u) parent_nodes[6 * uses[u].element + 3 + uses[u].local_edge] = m;
+    });
+    for (GlobalId e = 0; e < ne; ++e)
+      for (int i = 0; i < 3; ++i) parent_nodes[6 * e + i] = conn[3 * e + i];
+    extend_node_sets(mesh, nn0, uses, edge_nodes, [&](GlobalId e, int k) { return conn[3 * e + (k + 2) % 3]; });
+  }
+  // Children's vertices.
+  std::vector<GlobalId> child(4 * ne * npe);
+  for (GlobalId e = 0; e < ne; ++e)
+    for (int c = 0; c < 4; ++c)
+      for (int i = 0; i < 3; ++i) child[(4 * e + c) * npe + i] = parent_nodes[6 * e + child_nodes[c][i]];
+  if (npe == 6) {
+    // New mid-side nodes of the children, on the parent's P2 map (then on the exact surface).
+    const GlobalId nc = 4 * ne;
+    const auto uses = detail::edge_uses(nc, [&](GlobalId c, int i) { return child[6 * c + i]; });
+    const GlobalId nn1 = mesh.num_nodes();
+    std::vector<GlobalId> edge_nodes;
+    detail::for_each_edge(uses, [&](std::size_t first, std::size_t last) {
+      const GlobalId c = uses[first].element, p = c / 4;
+      const int k = uses[first].local_edge;
+      const int i0 = child_nodes[c % 4][edge_vertex[k][0]], i1 = child_nodes[c % 4][edge_vertex[k][1]];
+      const double xi1 = 0.5 * (disc::p2_node_xi[i0][0] + disc::p2_node_xi[i1][0]);
+      const double xi2 = 0.5 * (disc::p2_node_xi[i0][1] + disc::p2_node_xi[i1][1]);
+      double N[6], dN[6][2];
+      disc::p2_shape(xi1, xi2, N, dN);
+      Vec3 x{0, 0, 0};
+      for (int a = 0; a < 6; ++a) x = add(x, scale(N[a], mesh.coords[parent_nodes[6 * p + a]]));
+      const GlobalId m = mesh.num_nodes();
+      mesh.coords.push_back(mesh.surface.project(x));
+      edge_nodes.push_back(m);
+      for (std::size_t u = first; u < last; ++u) child[6 * uses[u].element + 3 + uses[u].local_edge] = m;
+    });
+    extend_node_sets(mesh, nn1, uses, edge_nodes, [&](GlobalId c, int k) { return child[6 * c + (k + 2) % 3]; });
+  }
+  mesh.connectivity = std::move(child);
+  refine_sets(mesh);
+}
+
+}  // namespace shellfrac::mesh
