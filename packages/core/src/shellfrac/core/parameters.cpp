@@ -155,8 +155,8 @@ void validate(ParameterList& user, const ParameterList& valid, const Context& ct
       user.set(name, static_cast<double>(Teuchos::getValue<int>(u)), v->docString());
       continue;
     }
-    SHELLFRAC_INPUT_REQUIRE(ut == vt, ctx.file << ": parameter '" << ctx.path << "->" << name << "' is a " << ut
-                                               << " but must be a " << vt
+    SHELLFRAC_INPUT_REQUIRE(ut == vt, ctx.file << ": parameter '" << ctx.path << "->" << name << "' has type " << ut
+                                               << " but must have type " << vt
                                                << (vt == "ParameterList" ? " (a <ParameterList name=...> element)" : "")
                                                << ". " << v->docString());
   }
@@ -207,6 +207,16 @@ void set_choice(ParameterList& pl, const std::string& name, const std::string& d
                 const std::vector<std::string>& choices) {
   Teuchos::Array<std::string> c(choices.begin(), choices.end());
   pl.set(name, default_value, doc, Teuchos::rcp(new Teuchos::StringValidator(c)));
+}
+
+void strip_validators(ParameterList& pl) {
+  for (auto it = pl.begin(); it != pl.end(); ++it) {
+    auto& e = pl.getEntry(pl.name(it));
+    if (e.isList())
+      strip_validators(pl.sublist(pl.name(it)));
+    else
+      e.setValidator(Teuchos::null);
+  }
 }
 
 void write_documented_xml(std::ostream& os, const ParameterList& valid, int indent) {

@@ -56,6 +56,10 @@ void set_choice(ParameterList& pl, const std::string& name, const std::string& d
 /// comment with its documentation and valid values.
 void write_documented_xml(std::ostream& os, const ParameterList& valid, int indent = 0);
 
+/// Removes every validator from pl and its sublists (for echoing a validated deck as plain XML:
+/// Teuchos cannot serialize shellfrac's own validators).
+void strip_validators(ParameterList& pl);
+
 /// Levenshtein distance, for "did you mean" suggestions.
 std::size_t edit_distance(const std::string& a, const std::string& b);
 

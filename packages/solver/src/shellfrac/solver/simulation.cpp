@@ -1,1 +1,225 @@
-// stub
+#include "shellfrac/solver/simulation.hpp"
+
+#include <Teuchos_XMLParameterListCoreHelpers.hpp>
+#include <algorithm>
+#include <filesystem>
+#include <regex>
+#include <sstream>
+#include <sys/stat.h>
+
+#include "shellfrac/core/error.hpp"
+#include "shellfrac/core/parallel.hpp"
+#include "shellfrac/dist/distributed_mesh.hpp"
+#include "shellfrac/dist/partitioner.hpp"
+#include "shellfrac/io/exodus_results.hpp"
+#include "shellfrac/io/history.hpp"
+#include "shellfrac/mesh/vec3_ops.hpp"
+
+namespace shellfrac::solver {
+
+namespace {
+
+std::string directory_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? std::string() : path.substr(0, slash);
+}
+
+std::string stem_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  const auto dot = name.find_last_of('.');
+  return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
+}
+
+/// The expanded deck as Exodus information records (at most 80 characters each).
+std::vector<std::string> info_records(const Teuchos::ParameterList& deck) {
+  Teuchos::ParameterList pl = deck;
+  params::strip_validators(pl);
+  std::ostringstream os;
+  Teuchos::writeParameterListToXmlOStream(pl, os);
+  std::vector<std::string> lines;
+  std::istringstream is(os.str());
+  for (std::string line; std::getline(is, line);)
+    for (std::size_t i = 0; i < line.size() || i == 0; i += 80) lines.push_back(line.substr(i, 80));
+  return lines;
+}
+
+/// Removes `path` and the files of any per-rank set `path.<n>.<r>`.
+void remove_stale_results(const std::string& path) {
+  namespace fs = std::filesystem;
+  const fs::path p(path);
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  const std::regex set_file(std::regex_replace(p.filename().string(), std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
+                            R"(\.[0-9]+\.[0-9]+)");
+  std::error_code ec;
+  fs::remove(p, ec);
+  for (const auto& entry : fs::directory_iterator(dir, ec))
+    if (std::regex_match(entry.path().filename().string(), set_file)) fs::remove(entry.path(), ec);
+}
+
+}  // namespace
+
+Teuchos::RCP<const Teuchos::ParameterList> OutputParams::valid_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Output"));
+  pl->set("Base Name", "", "Base name of the results: <Base Name>.exo (or the per-rank set <Base Name>.exo.<np>.<rank>) "
+                           "and <Base Name>_history.csv; empty = the deck's file name without extension");
+  pl->set("Directory", "", "Directory for the results (must exist); empty = the current directory");
+  return pl;
+}
+
+Teuchos::RCP<const Teuchos::ParameterList> Deck::valid_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("shellfrac"));
+  pl->set("Mesh", *MeshParams::valid_parameters(), "The mesh: a file or a built-in generator");
+  auto& blocks = pl->sublist("Blocks", false, "One sublist per element block of the mesh, named as the block");
+  blocks.set("shell", *materials::BlockParams::valid_parameters());
+  auto& mats = pl->sublist("Materials", false, "One sublist per material, named freely; blocks refer to them");
+  mats.set("steel", *materials::MaterialParams::valid_parameters());
+  pl->set("Partitioning", *dist::PartitionParams::valid_parameters(), "Domain decomposition of the elements");
+  pl->set("Output", *OutputParams::valid_parameters(), "Results files");
+  return pl;
+}
+
+Deck Deck::read(const std::string& file, MPI_Comm comm) {
+  Deck d;
+  d.file = file;
+  d.expanded = params::read_deck(file, comm);
+  auto& pl = *d.expanded;
+  const params::Context ctx{file, "shellfrac"};
+  // Top level: only the known sublists; user-named children of Blocks/Materials are validated one by one.
+  Teuchos::ParameterList top("shellfrac");
+  for (const char* name : {"Mesh", "Blocks", "Materials", "Partitioning", "Output"}) top.sublist(name);
+  params::validate(pl, top, ctx);
+  for (const char* name : {"Blocks", "Materials"})
+    SHELLFRAC_INPUT_REQUIRE(pl.isSublist(name) && pl.sublist(name).numParams() > 0,
+                            file << ": the deck needs a '" << name << "' sublist with one entry per "
+                                 << (std::string(name) == "Blocks" ? "element block (thickness, material)"
+                                                                   : "material (density, elastic constants)"));
+  d.mesh = MeshParams::from_parameters(pl.sublist("Mesh"), ctx / "Mesh", directory_of(file));
+  auto& blocks = pl.sublist("Blocks");
+  for (auto it = blocks.begin(); it != blocks.end(); ++it) {
+    const std::string& name = blocks.name(it);
+    SHELLFRAC_INPUT_REQUIRE(blocks.entry(it).isList(),
+                            file << ": 'Blocks->" << name << "' must be a sublist (Thickness, Material)");
+    d.blocks[name] = materials::BlockParams::from_parameters(name, blocks.sublist(name), ctx / "Blocks" / name);
+  }
+  auto& mats = pl.sublist("Materials");
+  for (auto it = mats.begin(); it != mats.end(); ++it) {
+    const std::string& name = mats.name(it);
+    SHELLFRAC_INPUT_REQUIRE(mats.entry(it).isList(), file << ": 'Materials->" << name << "' must be a sublist");
+    d.materials[name] = materials::MaterialParams::from_parameters(name, mats.sublist(name), ctx / "Materials" / name);
+  }
+  for (const auto& [name, b] : d.blocks) {
+    if (d.materials.count(b.material)) continue;
+    std::ostringstream os;
+    for (const auto& [m, unused] : d.materials) os << " '" << m << "'";
+    throw InputError(file + ": 'Blocks->" + name + "->Material' is '" + b.material +
+                     "', which is not in Materials; defined materials:" + os.str());
+  }
+  d.partition = std::make_shared<dist::PartitionParams>(
+      dist::PartitionParams::from_parameters(pl.sublist("Partitioning"), ctx / "Partitioning"));
+  auto& out = pl.sublist("Output");
+  params::validate(out, *OutputParams::valid_parameters(), ctx / "Output");
+  d.output.base_name = out.get<std::string>("Base Name");
+  if (d.output.base_name.empty()) d.output.base_name = stem_of(file);
+  d.output.directory = out.get<std::string>("Directory");
+  if (!d.output.directory.empty()) {
+    struct stat st {};
+    SHELLFRAC_INPUT_REQUIRE(stat(d.output.directory.c_str(), &st) == 0 && S_ISDIR(st.st_mode),
+                            file << ": 'Output->Directory' = '" << d.output.directory << "' is not an existing directory");
+  }
+  return d;
+}
+
+Simulation::Simulation(const std::string& deck_file, MPI_Comm comm) : comm_(comm), deck_(Deck::read(deck_file, comm)) {
+  mesh_ = std::make_unique<mesh::SerialMesh>(build_mesh(deck_.mesh, comm));
+  const auto& m = *mesh_;
+  // Every mesh block needs a section; every section must name a mesh block.
+  for (const auto& b : m.blocks)
+    SHELLFRAC_INPUT_REQUIRE(deck_.blocks.count(b.name), deck_.file << ": mesh block '" << b.name << "' (from " << m.source
+                                                                   << ") has no entry in the Blocks sublist");
+  for (const auto& [name, unused] : deck_.blocks) {
+    const bool found = std::any_of(m.blocks.begin(), m.blocks.end(), [&](const auto& b) { return b.name == name; });
+    std::ostringstream os;
+    for (const auto& b : m.blocks) os << " '" << b.name << "'";
+    SHELLFRAC_INPUT_REQUIRE(found, deck_.file << ": 'Blocks->" << name << "' names no block of the mesh (" << m.source
+                                              << "); its blocks are:" << os.str());
+  }
+  const auto topo = mesh::build_edge_topology(m, deck_.mesh.non_manifold);
+  for (const auto& f : topo.interfaces)
+    SHELLFRAC_INPUT_REQUIRE(!f.same_orientation || f.non_manifold,
+                            m.source << ": elements " << f.minus.element + 1 << " and " << f.plus.element + 1
+                                     << " have opposite orientations (normals); orient the surface consistently "
+                                        "(e.g. Gmsh: ReorientMesh / Reverse Surface)");
+  const int np = parallel::size(comm);
+  const auto part = dist::partition_elements(m, topo, np, *deck_.partition, comm);
+  dmesh_ = std::make_unique<dist::DistributedMesh>(m, topo, part, comm);
+
+  summary_.elements = m.num_elements();
+  summary_.nodes = m.num_nodes();
+  summary_.edges = topo.num_edges();
+  summary_.interfaces = static_cast<GlobalId>(topo.interfaces.size());
+  summary_.boundary_edges = static_cast<GlobalId>(topo.boundary.size());
+  summary_.non_manifold_edges = topo.num_non_manifold_edges;
+  summary_.max_owned = static_cast<GlobalId>(parallel::max(double(dmesh_->num_owned()), comm));
+  summary_.min_owned = -static_cast<GlobalId>(parallel::max(-double(dmesh_->num_owned()), comm));
+  summary_.max_ghosts = static_cast<GlobalId>(parallel::max(double(dmesh_->num_ghosts()), comm));
+  summary_.min_ghosts = -static_cast<GlobalId>(parallel::max(-double(dmesh_->num_ghosts()), comm));
+}
+
+Simulation::~Simulation() = default;
+
+std::string Simulation::exodus_path() const {
+  const auto& o = deck_.output;
+  return (o.directory.empty() ? std::string() : o.directory + "/") + o.base_name + ".exo";
+}
+
+std::string Simulation::history_path() const {
+  const auto& o = deck_.output;
+  return (o.directory.empty() ? std::string() : o.directory + "/") + o.base_name + "_history.csv";
+}
+
+RunSummary Simulation::run() {
+  const auto& dm = *dmesh_;
+  const int npe = dm.nodes_per_element();
+  io::ResultsLayout layout;
+  layout.title = "shellfrac: " + deck_.file;
+  layout.nodes_per_element = npe;
+  for (const auto& b : mesh_->blocks) layout.block_names.push_back(b.name), layout.block_ids.push_back(b.id);
+  layout.nodal_vectors = {"displ", "velocity", "director"};
+  layout.element_scalars = {"block", "rank"};
+  layout.info = info_records(*deck_.expanded);
+  std::vector<std::vector<Vec3>> nodal(3);
+  std::vector<std::vector<double>> element(2);
+  for (LocalId le = 0; le < dm.num_owned(); ++le) {
+    layout.element_gids.push_back(dm.element_gid(le));
+    layout.element_block.push_back(dm.element_block(le));
+    element[0].push_back(mesh_->blocks[dm.element_block(le)].id);
+    element[1].push_back(dm.rank());
+    for (int a = 0; a < npe; ++a) {
+      layout.node_coords.push_back(dm.node_coords(le, a));
+      nodal[0].push_back({0, 0, 0});  // reference state: no displacement
+      nodal[1].push_back({0, 0, 0});  // at rest
+      // Directors are P1 (math.md §2): at a mid-side node t_h is the mean of its edge's vertex directors.
+      const Vec3 t = a < 3 ? dm.reference_director(le, a)
+                           : mesh::scale(0.5, mesh::add(dm.reference_director(le, edge_vertex[a - 3][0]),
+                                                        dm.reference_director(le, edge_vertex[a - 3][1])));
+      nodal[2].push_back(t);
+    }
+  }
+  // Results of an earlier run with another rank count would sit beside ours and confuse ParaView (which
+  // opens a per-rank set from any of its files): remove <base>.exo and every <base>.exo.<n>.<r> first.
+  parallel::on_root_then_agree([&] { remove_stale_results(exodus_path()); }, 0, comm_);
+  io::ExodusResultsWriter exo(exodus_path(), layout, comm_);
+  exo.write_step(0.0, nodal, element);
+  io::HistoryWriter history(history_path(), {"step", "time", "dt", "kinetic_energy", "strain_energy", "penalty_energy",
+                                             "external_work", "energy_balance_error"},
+                            comm_);
+  // The reference state at rest: every energy is exactly zero.
+  history.write_row({0, 0, 0, 0, 0, 0, 0, 0});
+  const int np = parallel::size(comm_);
+  summary_.files = {np == 1 ? exodus_path() : io::rank_file_name(exodus_path(), np, 0) + " ... (" + std::to_string(np) + " files)",
+                    history_path()};
+  return summary_;
+}
+
+}  // namespace shellfrac::solver

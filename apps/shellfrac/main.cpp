@@ -1,0 +1,118 @@
+// shellfrac: DG / cohesive-zone simulation of shear-flexible shells (Talamini & Radovitzky, CMAME 2017).
+//   shellfrac DECK.xml                     run the deck
+//   shellfrac --check DECK.xml             validate the deck and build the mesh/partition; write nothing
+//   shellfrac --print-valid-parameters [F] documented XML skeleton of every parameter (stdout or file F)
+//   shellfrac --help | --version
+// Exit codes: 0 success, 1 input error (message names the file and parameter), 2 usage error,
+// 3 internal error (all ranks aborted).
+#include <mpi.h>
+
+#include <Tpetra_Core.hpp>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "shellfrac/core/error.hpp"
+#include "shellfrac/core/parallel.hpp"
+#include "shellfrac/solver/simulation.hpp"
+
+namespace {
+
+const char* usage =
+    "usage: shellfrac [options] DECK.xml\n"
+    "Simulates deformation and fracture of shear-flexible shells (DG / cohesive zones).\n"
+    "\n"
+    "options:\n"
+    "  --check                          validate the deck, build the mesh and partition, write nothing\n"
+    "  --print-valid-parameters [FILE]  write a documented XML deck with every parameter and its default\n"
+    "  --help                           this text\n"
+    "  --version                        version\n"
+    "\n"
+    "Results go to the current directory unless the deck's Output sublist says otherwise:\n"
+    "  <deck>.exo (np = 1) or the per-rank set <deck>.exo.<np>.<rank> (np > 1), and <deck>_history.csv.\n"
+    "Run in parallel with: mpirun -np N shellfrac DECK.xml\n"
+    "Input reference: docs/input_reference.xml (the output of --print-valid-parameters).\n";
+
+int run(int argc, char** argv) {
+  const bool root = shellfrac::parallel::rank() == 0;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  bool check = false;
+  std::string deck;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--help" || a == "-h") {
+      if (root) std::cout << usage;
+      return 0;
+    } else if (a == "--version") {
+      if (root) std::cout << "shellfrac 0.1.0\n";
+      return 0;
+    } else if (a == "--print-valid-parameters") {
+      if (!root) return 0;
+      const auto valid = shellfrac::solver::Deck::valid_parameters();
+      if (i + 1 < args.size()) {
+        std::ofstream out(args[i + 1]);
+        if (!out) {
+          std::cerr << "shellfrac: error: cannot write " << args[i + 1] << "\n";
+          return 1;
+        }
+        shellfrac::params::write_documented_xml(out, *valid);
+      } else {
+        shellfrac::params::write_documented_xml(std::cout, *valid);
+      }
+      return 0;
+    } else if (a == "--check") {
+      check = true;
+    } else if (!a.empty() && a[0] == '-') {
+      if (root) std::cerr << "shellfrac: error: unknown option '" << a << "'\n\n" << usage;
+      return 2;
+    } else if (deck.empty()) {
+      deck = a;
+    } else {
+      if (root) std::cerr << "shellfrac: error: more than one deck given ('" << deck << "', '" << a << "')\n";
+      return 2;
+    }
+  }
+  if (deck.empty()) {
+    if (root) std::cerr << "shellfrac: error: no input deck given\n\n" << usage;
+    return 2;
+  }
+  shellfrac::solver::Simulation sim(deck);
+  const auto& s = sim.summary();
+  if (root) {
+    std::cout << "shellfrac 0.1.0: " << deck << " on " << shellfrac::parallel::size() << " rank(s)\n"
+              << "  mesh: " << s.elements << " TRI6 elements, " << s.nodes << " nodes, " << s.edges << " edges ("
+              << s.interfaces << " interfaces, " << s.boundary_edges << " boundary, " << s.non_manifold_edges
+              << " non-manifold)\n"
+              << "  partition: " << s.min_owned << ".." << s.max_owned << " elements and " << s.min_ghosts << ".."
+              << s.max_ghosts << " ghosts per rank\n";
+  }
+  if (check) {
+    if (root) std::cout << "  deck and mesh are valid (--check: nothing written)\n";
+    return 0;
+  }
+  const auto out = sim.run();
+  if (root)
+    for (const auto& f : out.files) std::cout << "  wrote " << f << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Tpetra::ScopeGuard scope(&argc, &argv);
+  const bool root = shellfrac::parallel::rank() == 0;
+  try {
+    return run(argc, argv);
+  } catch (const shellfrac::InputError& e) {
+    // Input errors are detected collectively: every rank has the same message and exits normally.
+    if (root) std::cerr << "shellfrac: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "shellfrac: internal error on rank " << shellfrac::parallel::rank() << ": " << e.what() << "\n";
+    std::fflush(stderr);
+    MPI_Abort(MPI_COMM_WORLD, 3);
+    return 3;
+  }
+}

@@ -1,0 +1,129 @@
+// Deck validation (issue: foundation, item 4): an unknown or misspelled parameter, a wrong type, an
+// out-of-range value, an invalid choice, a missing or malformed deck must each give one clear message naming
+// the file, the parameter path and the valid choices. The expected texts below are the contract.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "shellfrac/core/error.hpp"
+#include "shellfrac/core/parameters.hpp"
+
+using namespace shellfrac;
+
+namespace {
+
+Teuchos::RCP<Teuchos::ParameterList> valid_section() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Section"));
+  pl->set("Thickness", 0.1, "Shell thickness h [length]", params::positive_double());
+  pl->set("Poisson's Ratio", 0.3, "Poisson's ratio", params::double_range(-1.0, 0.5, true, true));
+  pl->set("Layers", 1, "Number of layers", params::int_range(1, 10));
+  params::set_choice(*pl, "Model", "Elastic", "Constitutive model", {"Elastic", "Resultant Plasticity"});
+  pl->sublist("Extra", false, "A nested sublist");
+  return pl;
+}
+
+std::string error_of(Teuchos::ParameterList user) {
+  try {
+    params::validate(user, *valid_section(), {"deck.xml", "shellfrac->Section"});
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void expect_contains(const std::string& text, const std::string& part) {
+  EXPECT_NE(text.find(part), std::string::npos) << "message:\n  " << text << "\nshould contain:\n  " << part;
+}
+
+}  // namespace
+
+TEST(Parameters, MisspelledNameIsNamedWithSuggestionAndValidNames) {
+  Teuchos::ParameterList user;
+  user.set("Thicknes", 0.2);
+  const auto msg = error_of(user);
+  expect_contains(msg, "deck.xml: unknown parameter 'Thicknes' in 'shellfrac->Section'.");
+  expect_contains(msg, "Did you mean 'Thickness'?");
+  expect_contains(msg, "Valid names here: 'Thickness', 'Poisson's Ratio', 'Layers', 'Model', 'Extra' (sublist).");
+}
+
+TEST(Parameters, WrongTypeIsRejected) {
+  Teuchos::ParameterList user;
+  user.set("Thickness", std::string("thin"));
+  expect_contains(error_of(user), "deck.xml: parameter 'shellfrac->Section->Thickness' has type string but must have type double.");
+  Teuchos::ParameterList sub;
+  sub.set("Extra", 3);
+  expect_contains(error_of(sub), "'shellfrac->Section->Extra' has type int but must have type ParameterList");
+}
+
+TEST(Parameters, IntegerGivenForDoubleIsAccepted) {
+  Teuchos::ParameterList user;
+  user.set("Thickness", 2);
+  EXPECT_EQ(error_of(user), "");
+  params::validate(user, *valid_section(), {"deck.xml", "Section"});
+  EXPECT_EQ(user.get<double>("Thickness"), 2.0);
+}
+
+TEST(Parameters, OutOfRangeNamesValueAndRange) {
+  Teuchos::ParameterList neg;
+  neg.set("Thickness", -0.1);
+  const auto msg = error_of(neg);
+  expect_contains(msg, "deck.xml: invalid value '-0.1' for parameter 'shellfrac->Section->Thickness'");
+  expect_contains(msg, "(Shell thickness h [length])");
+  expect_contains(msg, "must be > 0");
+  Teuchos::ParameterList nu;
+  nu.set("Poisson's Ratio", 0.5);
+  expect_contains(error_of(nu), "must be in (-1, 0.5)");
+  Teuchos::ParameterList layers;
+  layers.set("Layers", 0);
+  expect_contains(error_of(layers), "must be in [1, 10]");
+}
+
+TEST(Parameters, InvalidChoiceListsTheChoices) {
+  Teuchos::ParameterList user;
+  user.set("Model", std::string("Elastc"));
+  expect_contains(error_of(user), "invalid value 'Elastc' for parameter 'shellfrac->Section->Model' (Constitutive model): "
+                                  "valid choices are 'Elastic' 'Resultant Plasticity'.");
+}
+
+TEST(Parameters, DefaultsAreFilledIn) {
+  Teuchos::ParameterList user;
+  user.set("Layers", 3);
+  params::validate(user, *valid_section(), {"deck.xml", "Section"});
+  EXPECT_EQ(user.get<double>("Thickness"), 0.1);
+  EXPECT_EQ(user.get<std::string>("Model"), "Elastic");
+  EXPECT_EQ(user.get<int>("Layers"), 3);
+}
+
+TEST(Parameters, MissingAndMalformedDecks) {
+  try {
+    params::read_deck("no_such_deck.xml");
+    FAIL();
+  } catch (const InputError& e) {
+    expect_contains(e.what(), "no_such_deck.xml: cannot open the input deck");
+  }
+  {
+    std::ofstream("malformed_deck.xml") << "<ParameterList name=\"x\"><Parameter name=\"a\" type=\"double\" value=\"1\">";
+  }
+  try {
+    params::read_deck("malformed_deck.xml");
+    FAIL();
+  } catch (const InputError& e) {
+    expect_contains(e.what(), "malformed_deck.xml: not a valid Teuchos XML parameter list");
+  }
+}
+
+TEST(Parameters, DocumentedSkeletonListsDefaultsChoicesAndRanges) {
+  std::ostringstream os;
+  params::write_documented_xml(os, *valid_section());
+  const std::string xml = os.str();
+  expect_contains(xml, "<!-- Shell thickness h [length] Range: > 0. -->");
+  expect_contains(xml, "<Parameter name=\"Thickness\" type=\"double\" value=\"0.10000000000000001\"/>");
+  expect_contains(xml, "Choices: 'Elastic' 'Resultant Plasticity'.");
+  expect_contains(xml, "<ParameterList name=\"Extra\">");
+}
+
+TEST(Parameters, EditDistance) {
+  EXPECT_EQ(params::edit_distance("Thicknes", "Thickness"), 1u);
+  EXPECT_EQ(params::edit_distance("", "abc"), 3u);
+  EXPECT_EQ(params::edit_distance("kitten", "sitting"), 3u);
+}

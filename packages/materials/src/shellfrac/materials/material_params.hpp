@@ -1,0 +1,38 @@
+#pragma once
+/// \file material_params.hpp
+/// Material and section parameters, validated from the deck and turned into plain structs
+/// (kernels never see a ParameterList). Units are the user's, consistently (e.g. SI, or lbf-in-s).
+#include <map>
+#include <string>
+
+#include "shellfrac/core/parameters.hpp"
+
+namespace shellfrac::materials {
+
+/// Bulk material of a shell block (paper Tables 1-4). The elastic resultant law (math.md §3) uses E, nu;
+/// resultant plasticity (issue: plasticity) will add Y0 and H under Model = "Resultant Plasticity".
+struct MaterialParams {
+  std::string name;
+  std::string model = "Elastic";
+  double density = 0;          ///< rho0 [mass / length^3]
+  double youngs_modulus = 0;   ///< E [force / length^2]
+  double poissons_ratio = 0;   ///< nu, in (-1, 0.5)
+
+  /// Valid parameters of one entry of the "Materials" sublist.
+  static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
+  /// Validates `pl` (sets defaults) and converts it. ctx names the deck and the sublist.
+  static MaterialParams from_parameters(const std::string& name, Teuchos::ParameterList& pl,
+                                        const params::Context& ctx);
+};
+
+/// Section of an element block: thickness and material.
+struct BlockParams {
+  std::string name;
+  double thickness = 0;  ///< h [length]
+  std::string material;  ///< key into the Materials sublist
+
+  static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
+  static BlockParams from_parameters(const std::string& name, Teuchos::ParameterList& pl, const params::Context& ctx);
+};
+
+}  // namespace shellfrac::materials

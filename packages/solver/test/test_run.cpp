@@ -1,0 +1,171 @@
+// End-to-end runs of the foundation (issue: foundation, acceptance): a generated cylindrical panel and a
+// Gmsh-meshed curved surface are read, partitioned on 1, 2 and 3 ranks, written to Exodus, and read back.
+// Reference: the serial mesh itself. Every DG node written must carry exactly (bitwise) the coordinates of
+// its mesh node and the reference director of math.md §1.5, whatever the rank count; the element count must
+// equal the mesh's. Bad decks must raise InputError naming the problem and must write nothing.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "shellfrac/core/error.hpp"
+#include "shellfrac/core/parallel.hpp"
+#include "shellfrac/io/exodus_results.hpp"
+#include "shellfrac/mesh/generators.hpp"
+#include "shellfrac/mesh/serial_mesh.hpp"
+#include "shellfrac/meshio/exodus_mesh_io.hpp"
+#include "shellfrac/solver/simulation.hpp"
+
+using namespace shellfrac;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A per-test, per-rank-count working directory (tests at several np may run at the same time).
+std::string work_dir(const std::string& name) {
+  const std::string dir = name + ".np" + std::to_string(parallel::size());
+  if (parallel::rank() == 0) {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  return dir;
+}
+
+std::string deck(const std::string& mesh_xml, const std::string& block, const std::string& extra = "") {
+  return "<ParameterList name=\"shellfrac\">\n" + mesh_xml +
+         "<ParameterList name=\"Blocks\"><ParameterList name=\"" + block +
+         "\"><Parameter name=\"Thickness\" type=\"double\" value=\"0.125\"/>"
+         "<Parameter name=\"Material\" type=\"string\" value=\"al\"/></ParameterList></ParameterList>\n"
+         "<ParameterList name=\"Materials\"><ParameterList name=\"al\">"
+         "<Parameter name=\"Density\" type=\"double\" value=\"2.5e-4\"/>"
+         "<Parameter name=\"Young's Modulus\" type=\"double\" value=\"10.5e6\"/>"
+         "<Parameter name=\"Poisson's Ratio\" type=\"double\" value=\"0.33\"/></ParameterList></ParameterList>\n" +
+         extra + "</ParameterList>\n";
+}
+
+const std::string panel_mesh =
+    "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"Cylindrical Panel\"/>"
+    "<ParameterList name=\"Cylindrical Panel\">"
+    "<Parameter name=\"Radius\" type=\"double\" value=\"2.9375\"/>"
+    "<Parameter name=\"Length\" type=\"double\" value=\"12.56\"/>"
+    "<Parameter name=\"Angle\" type=\"double\" value=\"120\"/>"
+    "<Parameter name=\"Axial Elements\" type=\"int\" value=\"16\"/>"
+    "<Parameter name=\"Circumferential Elements\" type=\"int\" value=\"6\"/>"
+    "</ParameterList></ParameterList>\n";
+
+void write_file(const std::string& path, const std::string& text) {
+  if (parallel::rank() == 0) std::ofstream(path) << text;
+  MPI_Barrier(MPI_COMM_WORLD);
+}
+
+/// Runs the deck and checks the written results against `expected` (the P2 serial mesh).
+void run_and_check(const std::string& deck_path, const mesh::SerialMesh& expected) {
+  solver::Simulation sim(deck_path);
+  sim.run();
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (parallel::rank() != 0) return;
+  const auto res = io::read_results(sim.exodus_path());
+  ASSERT_EQ(res.num_files, parallel::size());
+  ASSERT_EQ(GlobalId(res.element_gids.size()), expected.num_elements());
+  ASSERT_EQ(res.nodes_per_element, 6);
+  const auto normals = mesh::reference_vertex_normals(expected);
+  ASSERT_EQ(res.times.size(), 1u);
+  ASSERT_EQ(res.nodal_names.size(), 9u);
+  EXPECT_EQ(res.nodal_names[6], "director_x");
+  for (std::size_t i = 0; i < res.element_gids.size(); ++i) {
+    const GlobalId e = res.element_gids[i];
+    ASSERT_EQ(e, GlobalId(i));
+    for (int a = 0; a < 6; ++a) {
+      const auto& x = expected.coords[expected.node(e, a)];
+      EXPECT_EQ(res.node_coords[6 * i + a], x) << "element " << e << " node " << a;
+      if (a < 3)
+        for (int c = 0; c < 3; ++c)
+          EXPECT_EQ(res.nodal[0][6 + c][6 * i + a], normals[expected.node(e, a)][c]) << "director, element " << e;
+    }
+    const double rank = res.element[0][1][i];
+    EXPECT_TRUE(rank >= 0 && rank < parallel::size());
+  }
+}
+
+}  // namespace
+
+TEST(Run, GeneratedCylindricalPanel) {
+  const auto dir = work_dir("panel");
+  write_file(dir + "/panel.xml", deck(panel_mesh, "shell",
+                                      "<ParameterList name=\"Output\"><Parameter name=\"Directory\" type=\"string\" "
+                                      "value=\"" + dir + "\"/></ParameterList>"));
+  auto expected = mesh::make_cylindrical_panel(2.9375, 12.56, 120 * M_PI / 180, 16, 6);
+  mesh::promote_to_p2(expected);
+  run_and_check(dir + "/panel.xml", expected);
+}
+
+TEST(Run, GmshCurvedSurface) {
+  const auto dir = work_dir("gmsh");
+  const std::string msh = dir + "/panel.msh";
+  if (parallel::rank() == 0) {
+    const std::string cmd = std::string(SHELLFRAC_GMSH) + " -2 -order 2 -nt 1 -format msh41 -v 0 " + SHELLFRAC_SOURCE_DIR +
+                            "/tests/data/gmsh/cylinder_panel.geo -o " + msh;
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  write_file(dir + "/curved.xml",
+             deck("<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"File\"/>"
+                  "<Parameter name=\"File\" type=\"string\" value=\"panel.msh\"/></ParameterList>\n",
+                  "skin",
+                  "<ParameterList name=\"Output\"><Parameter name=\"Directory\" type=\"string\" value=\"" + dir +
+                      "\"/></ParameterList>"));
+  const auto expected = meshio::read_mesh_file(msh);
+  EXPECT_EQ(expected.nodes_per_element, 6);  // Gmsh order 2: no promotion, the file's own mid-side nodes
+  run_and_check(dir + "/curved.xml", expected);
+}
+
+namespace {
+/// Expects Simulation(deck) to throw an InputError containing every phrase, and the directory to stay empty
+/// but for the deck.
+void expect_rejected(const std::string& dir, const std::string& text, const std::vector<std::string>& phrases) {
+  write_file(dir + "/bad.xml", text);
+  try {
+    solver::Simulation sim(dir + "/bad.xml");
+    sim.run();
+    ADD_FAILURE() << "deck accepted:\n" << text;
+  } catch (const InputError& e) {
+    for (const auto& p : phrases) EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what();
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  std::size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) files += entry.path().filename() != "bad.xml";
+  EXPECT_EQ(files, 0u) << "a rejected deck wrote files";
+}
+}  // namespace
+
+TEST(Run, BadDecksAreRejectedBeforeAnyOutput) {
+  const auto dir = work_dir("bad");
+  const std::string out = "<ParameterList name=\"Output\"><Parameter name=\"Directory\" type=\"string\" value=\"" + dir +
+                          "\"/></ParameterList>";
+  std::string misspelled = deck(panel_mesh, "shell", out);
+  misspelled.replace(misspelled.find("\"Thickness\""), 11, "\"Thicknes\"");
+  expect_rejected(dir, misspelled, {"bad.xml: unknown parameter 'Thicknes' in 'shellfrac->Blocks->shell'",
+                                    "Did you mean 'Thickness'?", "'Material'"});
+  std::string negative = deck(panel_mesh, "shell", out);
+  negative.replace(negative.find("0.125"), 5, "-0.125");
+  expect_rejected(dir, negative, {"invalid value '-0.125' for parameter 'shellfrac->Blocks->shell->Thickness'", "> 0"});
+  expect_rejected(dir, deck(panel_mesh, "skin", out), {"mesh block 'shell'", "has no entry in the Blocks sublist"});
+  expect_rejected(dir,
+                  deck("<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"File\"/>"
+                       "<Parameter name=\"File\" type=\"string\" value=\"missing.exo\"/></ParameterList>",
+                       "shell", out),
+                  {"missing.exo"});
+  std::string unknown_material = deck(panel_mesh, "shell", out);
+  unknown_material.replace(unknown_material.find("value=\"al\""), 10, "value=\"steel\"");
+  expect_rejected(dir, unknown_material, {"'Blocks->shell->Material' is 'steel', which is not in Materials", "'al'"});
+  expect_rejected(dir,
+                  deck(panel_mesh, "shell",
+                       out + "<ParameterList name=\"Partitioning\"><Parameter name=\"Method\" type=\"string\" "
+                             "value=\"ParMETIS\"/></ParameterList>"),
+                  {"'shellfrac->Partitioning->Method'", "'METIS' 'Zoltan2'"});
+  expect_rejected(dir, "<ParameterList name=\"shellfrac\"><ParameterList name=\"Mesh\"/></ParameterList>",
+                  {"the deck needs a 'Blocks' sublist"});
+}

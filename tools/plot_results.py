@@ -1,0 +1,120 @@
+#!/usr/bin/env python3
+"""Plots a shellfrac run: the deformed DG mesh coloured by an element field (default: owning rank) and,
+when the history has more than one row, the energy histories.
+
+usage: plot_results.py RESULTS.exo [--field rank] [--step -1] [--history H.csv] [-o out.png]
+
+RESULTS.exo may be a single file or the base name of a per-rank set RESULTS.exo.<np>.<rank>.
+Reads Exodus II through netCDF4 (Debian: python3-netcdf4).
+"""
+import argparse
+import csv
+import glob
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.collections import PolyCollection  # noqa: E402
+from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
+from netCDF4 import Dataset  # noqa: E402
+
+
+def names(ds, var):
+    if var not in ds.variables:
+        return []
+    return ["".join(c.decode() for c in row if c).strip() for row in ds.variables[var][:].data]
+
+
+def read_piece(path, field, step):
+    """Triangles (vertex coordinates, deformed) and the element field of one Exodus file."""
+    with Dataset(path) as ds:
+        x = np.stack([ds.variables[c][:] for c in ("coordx", "coordy", "coordz")], axis=1)
+        nod = names(ds, "name_nod_var")
+        if "displ_x" in nod and "time_whole" in ds.variables and len(ds.variables["time_whole"]) > 0:
+            for k, c in enumerate("xyz"):
+                x[:, k] += ds.variables["vals_nod_var%d" % (nod.index("displ_" + c) + 1)][step, :]
+        elem_names = names(ds, "name_elem_var")
+        tris, values = [], []
+        nblk = len(ds.dimensions["num_el_blk"]) if "num_el_blk" in ds.dimensions else 0
+        for b in range(1, nblk + 1):
+            conn_name = "connect%d" % b
+            if conn_name not in ds.variables or ds.variables[conn_name].shape[0] == 0:
+                continue
+            conn = ds.variables[conn_name][:] - 1
+            tris.append(x[conn[:, :3]])
+            v = "vals_elem_var%deb%d" % (elem_names.index(field) + 1, b) if field in elem_names else None
+            if v and v in ds.variables:
+                values.append(ds.variables[v][step, :])
+            else:
+                values.append(np.full(conn.shape[0], float(b)))
+        if not tris:
+            return np.zeros((0, 3, 3)), np.zeros(0)
+        return np.concatenate(tris), np.concatenate(values)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("results")
+    ap.add_argument("--field", default="rank", help="element variable used for colour (default: rank)")
+    ap.add_argument("--step", type=int, default=-1, help="time step index (default: last)")
+    ap.add_argument("--history", help="history CSV to plot beside the mesh")
+    ap.add_argument("-o", "--output", help="PNG file (default: RESULTS with .png)")
+    a = ap.parse_args()
+
+    files = [a.results] if os.path.exists(a.results) else sorted(glob.glob(a.results + ".*.*"))
+    if not files:
+        sys.exit("plot_results: no file %s or per-rank set %s.<np>.<rank>" % (a.results, a.results))
+    pieces = [read_piece(f, a.field, a.step) for f in files]
+    tris = np.concatenate([p[0] for p in pieces])
+    vals = np.concatenate([p[1] for p in pieces])
+
+    rows = []
+    if a.history and os.path.exists(a.history):
+        with open(a.history) as f:
+            rows = list(csv.DictReader(f))
+    with_history = len(rows) > 1
+    fig = plt.figure(figsize=(12 if with_history else 8, 5))
+    flat = np.ptp(tris[:, :, 2]) <= 1e-12 * max(np.ptp(tris[:, :, 0]), np.ptp(tris[:, :, 1]), 1e-300)
+    cmap = plt.get_cmap("tab20" if a.field == "rank" else "viridis")
+    norm = plt.Normalize(vals.min(), vals.max() if vals.max() > vals.min() else vals.min() + 1)
+    if flat:
+        ax = fig.add_subplot(1, 2 if with_history else 1, 1)
+        pc = PolyCollection(tris[:, :, :2], array=vals, cmap=cmap, norm=norm, edgecolors="k", linewidths=0.05)
+        ax.add_collection(pc)
+        ax.autoscale()
+        ax.set_aspect("equal")
+        ax.set_xlabel("x")
+        ax.set_ylabel("y")
+    else:
+        ax = fig.add_subplot(1, 2 if with_history else 1, 1, projection="3d")
+        pc = Poly3DCollection(tris, cmap=cmap, norm=norm, edgecolors="k", linewidths=0.05)
+        pc.set_array(vals)
+        ax.add_collection3d(pc)
+        lo, hi = tris.reshape(-1, 3).min(axis=0), tris.reshape(-1, 3).max(axis=0)
+        c, r = (lo + hi) / 2, (hi - lo).max() / 2
+        ax.set_xlim(c[0] - r, c[0] + r)
+        ax.set_ylim(c[1] - r, c[1] + r)
+        ax.set_zlim(c[2] - r, c[2] + r)
+    fig.colorbar(pc, ax=ax, label=a.field, shrink=0.7)
+    ax.set_title("%s: %d elements, %d file(s)" % (os.path.basename(a.results), len(tris), len(files)))
+    if with_history:
+        hx = fig.add_subplot(1, 2, 2)
+        t = [float(r["time"]) for r in rows]
+        for col in ("kinetic_energy", "strain_energy", "penalty_energy", "external_work"):
+            if col in rows[0]:
+                hx.plot(t, [float(r[col]) for r in rows], label=col)
+        hx.set_xlabel("time")
+        hx.set_ylabel("energy")
+        hx.legend()
+    out = a.output or os.path.splitext(a.results)[0] + ".png"
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+    print("plot_results: wrote", out)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# The main job: installs dependencies if missing, builds if needed, runs the default example deck on
+# 2 MPI ranks in ./results, and plots it. Usage: tools/run-example.sh [DECK.xml] [NUM_RANKS]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$(pwd)
+DECK=$(realpath "${1:-xml/cantilever_200x40.xml}")
+NP=${2:-2}
+bash tools/install-deps.sh
+bash tools/build.sh
+source tools/mpi-env.sh
+mkdir -p results
+cd results
+NAME=$(basename "$DECK" .xml)
+mpiexec --oversubscribe -np "$NP" "$ROOT/build/apps/shellfrac/shellfrac" "$DECK"
+/usr/bin/python3 "$ROOT/tools/plot_results.py" "$NAME.exo" --history "${NAME}_history.csv" -o "$NAME.png"
+echo "results in $(pwd): $NAME.exo$([ "$NP" -gt 1 ] && echo ".$NP.*"), ${NAME}_history.csv, $NAME.png"
