@@ -116,7 +116,7 @@ TEST(Parameters, DocumentedSkeletonListsDefaultsChoicesAndRanges) {
   std::ostringstream os;
   params::write_documented_xml(os, *valid_section());
   const std::string xml = os.str();
-  expect_contains(xml, "<!-- Shell thickness h [length] Range: > 0. -->");
+  expect_contains(xml, "<!-- Shell thickness h [length]. Range: > 0. -->");
   expect_contains(xml, "<Parameter name=\"Thickness\" type=\"double\" value=\"0.10000000000000001\"/>");
   expect_contains(xml, "Choices: 'Elastic' 'Resultant Plasticity'.");
   expect_contains(xml, "<ParameterList name=\"Extra\">");

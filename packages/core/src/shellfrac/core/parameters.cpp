@@ -236,6 +236,7 @@ void write_documented_xml(std::ostream& os, const ParameterList& valid, int inde
     }
     std::ostringstream comment;
     comment << e.docString();
+    if (!e.docString().empty() && e.docString().back() != '.') comment << '.';
     if (auto v = e.validator(); !v.is_null()) {
       if (auto choices = v->validStringValues(); !choices.is_null()) {
         comment << " Choices:";

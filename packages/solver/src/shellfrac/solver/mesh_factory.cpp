@@ -61,18 +61,14 @@ Teuchos::RCP<const Teuchos::ParameterList> MeshParams::valid_parameters() {
 MeshParams MeshParams::from_parameters(Teuchos::ParameterList& pl, const params::Context& ctx,
                                        const std::string& deck_dir) {
   const auto valid = valid_parameters();
-  // A generator sublist given for another source is almost certainly a mistake (checked before the
-  // defaults fill in every generator sublist).
-  const std::string given = pl.isParameter("Source") && pl.isType<std::string>("Source") ? pl.get<std::string>("Source")
-                                                                                       : std::string("Rectangle");
-  for (const std::string g : {"Rectangle", "Cylindrical Panel", "Cylinder"})
-    SHELLFRAC_INPUT_REQUIRE(g == given || !pl.isSublist(g),
-                            ctx.file << ": '" << ctx.path << "' has a sublist '" << g << "' but 'Source' is '" << given
-                                     << "'");
   params::validate(pl, *valid, ctx);
   MeshParams m;
   const std::string source = pl.get<std::string>("Source");
   m.source = static_cast<Source>(std::find(sources.begin(), sources.end(), source) - sources.begin());
+  // Every generator sublist given is validated (a typo in one is reported even if another Source is
+  // selected; the documented skeleton carries all of them); only the selected one is used.
+  for (const std::string g : {"Rectangle", "Cylindrical Panel", "Cylinder"})
+    if (pl.isSublist(g)) params::validate(pl.sublist(g), valid->sublist(g), ctx / g);
   m.refinements = pl.get<int>("Uniform Refinements");
   const std::string nm = pl.get<std::string>("Non-Manifold Edges");
   m.non_manifold = nm == "Error"  ? mesh::NonManifoldPolicy::Error
@@ -88,7 +84,6 @@ MeshParams MeshParams::from_parameters(Teuchos::ParameterList& pl, const params:
                           ctx.file << ": '" << ctx.path << "->File' is set but 'Source' is '" << source
                                    << "' (use Source = File to read a mesh file)");
   auto& g = pl.sublist(source);
-  params::validate(g, valid->sublist(source), ctx / source);
   const std::string pattern = g.get<std::string>("Diagonal Pattern");
   m.pattern = static_cast<mesh::DiagonalPattern>(std::find(patterns.begin(), patterns.end(), pattern) - patterns.begin());
   m.block_name = g.get<std::string>("Block Name");

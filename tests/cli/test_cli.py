@@ -1,0 +1,138 @@
+#!/usr/bin/env python3
+"""Command-line contract of shellfrac and shellfrac_meshtool (issue: foundation, items 3-5, acceptance):
+exit codes, one clear message naming the file and parameter, nothing written on bad input, the input
+reference in docs/ equal to what the program prints, every example deck valid.
+
+usage: test_cli.py SOURCE_DIR SHELLFRAC MESHTOOL MPIEXEC [MPIEXEC_PREFLAGS...]
+"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+SRC, SHELLFRAC, MESHTOOL, MPIEXEC = sys.argv[1:5]
+MPI_PREFLAGS = sys.argv[5:]
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+
+
+def run(args, cwd=None, np=None):
+    cmd = ([MPIEXEC, "-np", str(np)] + MPI_PREFLAGS if np else []) + args
+    return subprocess.run(cmd, cwd=cwd, env=ENV, capture_output=True, text=True, timeout=120)
+
+
+class Shellfrac(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="shellfrac_cli_")
+
+    def tearDown(self):
+        shutil.rmtree(self.dir, ignore_errors=True)
+
+    def deck(self, name, replace=None):
+        text = open(os.path.join(SRC, "xml", "cantilever_200x40.xml")).read()
+        if replace:
+            self.assertIn(replace[0], text)
+            text = text.replace(*replace)
+        path = os.path.join(self.dir, name)
+        with open(path, "w") as f:
+            f.write(text)
+        return path
+
+    def test_help_and_usage_errors(self):
+        r = run([SHELLFRAC, "--help"])
+        self.assertEqual(r.returncode, 0)
+        self.assertIn("usage: shellfrac", r.stdout)
+        r = run([SHELLFRAC])
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("no input deck given", r.stderr)
+        r = run([SHELLFRAC, "--frobnicate", "x.xml"])
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("unknown option '--frobnicate'", r.stderr)
+
+    def test_misspelled_parameter_names_it_once_and_writes_nothing(self):
+        deck = self.deck("typo.xml", ('name="Thickness"', 'name="Thicknes"'))
+        for np in (None, 2):
+            r = run([SHELLFRAC, deck], cwd=self.dir, np=np)
+            self.assertEqual(r.returncode, 1, r.stderr)
+            msg = "typo.xml: unknown parameter 'Thicknes' in 'shellfrac->Blocks->strip'. Did you mean 'Thickness'?"
+            self.assertEqual(r.stderr.count(msg), 1, r.stderr)  # printed once, also on 2 ranks
+            self.assertIn("Valid names here: 'Thickness', 'Material'.", r.stderr)
+            self.assertEqual(sorted(os.listdir(self.dir)), ["typo.xml"])  # nothing half-written
+
+    def test_out_of_range_and_missing_mesh_file(self):
+        deck = self.deck("neg.xml", ('value="0.01"', 'value="-0.01"'))
+        r = run([SHELLFRAC, deck], cwd=self.dir)
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("invalid value '-0.01' for parameter 'shellfrac->Blocks->strip->Thickness'", r.stderr)
+        self.assertIn("must be > 0", r.stderr)
+        deck = self.deck("nofile.xml", ('value="Rectangle"/>', 'value="File"/><Parameter name="File" type="string" '
+                                        'value="wing.msh"/>'))
+        text = open(deck).read()
+        text = re.sub(r'<ParameterList name="Rectangle">.*?</ParameterList>', "", text, flags=re.S)
+        open(deck, "w").write(text)
+        r = run([SHELLFRAC, deck], cwd=self.dir, np=2)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertIn("wing.msh", r.stderr)
+        self.assertEqual(sorted(os.listdir(self.dir)), ["neg.xml", "nofile.xml"])
+
+    def test_input_reference_in_docs_is_current_and_runnable(self):
+        ref = os.path.join(self.dir, "ref.xml")
+        r = run([SHELLFRAC, "--print-valid-parameters", ref])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(ref) as a, open(os.path.join(SRC, "docs", "input_reference.xml")) as b:
+            self.assertEqual(a.read(), b.read(),
+                             "docs/input_reference.xml is stale: regenerate it with shellfrac --print-valid-parameters")
+        r = run([SHELLFRAC, "--check", ref], cwd=self.dir)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("nothing written", r.stdout)
+        self.assertEqual(sorted(os.listdir(self.dir)), ["ref.xml"])
+
+    def test_every_example_deck_is_valid(self):
+        decks = sorted(f for f in os.listdir(os.path.join(SRC, "xml")) if f.endswith(".xml"))
+        self.assertTrue(decks)
+        for d in decks:
+            r = run([SHELLFRAC, "--check", os.path.join(SRC, "xml", d)], cwd=self.dir, np=2)
+            self.assertEqual(r.returncode, 0, d + ": " + r.stderr)
+
+    def test_run_writes_exodus_set_and_history(self):
+        deck = self.deck("run.xml")
+        r = run([SHELLFRAC, deck], cwd=self.dir, np=3)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        files = sorted(os.listdir(self.dir))
+        self.assertEqual(files, ["run.exo.3.0", "run.exo.3.1", "run.exo.3.2", "run.xml", "run_history.csv"])
+        with open(os.path.join(self.dir, "run_history.csv")) as f:
+            header = f.readline().strip()
+        self.assertEqual(header, "step,time,dt,kinetic_energy,strain_energy,penalty_energy,external_work,"
+                                 "energy_balance_error")
+        # a later serial run replaces the set by one file (no stale pieces left for ParaView to pick up)
+        r = run([SHELLFRAC, deck], cwd=self.dir)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(sorted(os.listdir(self.dir)), ["run.exo", "run.xml", "run_history.csv"])
+
+
+class MeshTool(unittest.TestCase):
+    def test_convert_info_and_errors(self):
+        d = tempfile.mkdtemp(prefix="shellfrac_meshtool_")
+        try:
+            src = os.path.join(SRC, "tests", "data", "gmsh", "square_v22.msh")
+            out = os.path.join(d, "square.exo")
+            r = run([MESHTOOL, "convert", src, out, "--p2", "--refine", "2"])
+            self.assertEqual(r.returncode, 0, r.stderr)
+            r = run([MESHTOOL, "info", out])
+            self.assertEqual(r.returncode, 0, r.stderr)
+            # 4 triangles, promoted to TRI6, refined twice: 4 * 16 = 64 elements
+            self.assertIn("elements: 64 TRI6", r.stdout)
+            r = run([MESHTOOL, "info", os.path.join(d, "none.msh")])
+            self.assertEqual(r.returncode, 1)
+            self.assertIn("none.msh", r.stderr)
+            r = run([MESHTOOL, "refine", src, out, "eleven"])
+            self.assertEqual(r.returncode, 1)
+            self.assertIn("refinement count 'eleven' must be 0..10", r.stderr)
+        finally:
+            shutil.rmtree(d, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    unittest.main(argv=[sys.argv[0], "-v"])
