@@ -10,7 +10,14 @@
 ///  * Physical curves (dim 1) -> a side set (line elements matched to triangle edges by their end vertices)
 ///    and a node set (all nodes of the lines, mid-side nodes included), both with the group's name and tag.
 ///  * Physical points (dim 0) -> node sets.
-///  * Nodes are renumbered 0.. in increasing Gmsh tag order; unused nodes are dropped.
+///  * Nodes are renumbered 0.. in increasing Gmsh tag order; unused nodes are dropped. Triangles are numbered
+///    in increasing element tag order.
+///  * Gmsh numbers physical groups per dimension, so a curve and a point may share a tag: the later set gets
+///    the next free id (and "_<id>" appended to a clashing name). Unnamed groups are "curve_<tag>",
+///    "point_<tag>", "block_<tag>".
+///  * A physical line on an interior edge is listed in the side set for both adjacent triangles; a line3 must
+///    match the triangle edge including its mid-side node.
+///  * Points outside any physical group are ignored (SaveAll writes construction points such as arc centres).
 /// Errors (InputError naming the file and, where it applies, the line or element tag): unreadable file,
 /// unsupported version, quadrilaterals or volume elements, a line element that is not an edge of any
 /// triangle, truncated or malformed sections, unknown node tags.
