@@ -1,1 +1,174 @@
-// stub: to be implemented
+#include "shellfrac/dist/distributed_mesh.hpp"
+
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <Teuchos_OrdinalTraits.hpp>
+#include <algorithm>
+#include <cstdint>
+
+#include "shellfrac/core/error.hpp"
+#include "shellfrac/core/parallel.hpp"
+#include "shellfrac/dist/element_maps.hpp"
+#include "shellfrac/mesh/generators.hpp"
+#include "shellfrac/mesh/serial_mesh.hpp"
+
+namespace shellfrac::dist {
+
+namespace {
+
+/// FNV-1a hash of the partition, to check that every rank was given the same one.
+std::uint64_t hash_partition(const std::vector<int>& part) {
+  std::uint64_t h = 1469598103934665603ull;
+  auto mix = [&h](std::uint64_t v) {
+    for (int b = 0; b < 8; ++b) {
+      h ^= (v >> (8 * b)) & 0xffu;
+      h *= 1099511628211ull;
+    }
+  };
+  mix(part.size());
+  for (int p : part) mix(static_cast<std::uint64_t>(static_cast<std::int64_t>(p)));
+  return h;
+}
+
+Teuchos::ArrayView<const tpetra_go> view_of(const std::vector<tpetra_go>& v, std::size_t n) {
+  if (n == 0) return Teuchos::ArrayView<const tpetra_go>();
+  return Teuchos::ArrayView<const tpetra_go>(v.data(), static_cast<Teuchos::ArrayView<const tpetra_go>::size_type>(n));
+}
+
+}  // namespace
+
+DistributedMesh::DistributedMesh(const mesh::SerialMesh& mesh, const mesh::EdgeTopology& topo,
+                                 const std::vector<int>& part, MPI_Comm comm)
+    : comm_(comm) {
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &num_ranks_);
+  npe_ = mesh.nodes_per_element;
+  num_global_elements_ = mesh.num_elements();
+  const GlobalId ne = num_global_elements_;
+
+  // 1. Check the inputs on every rank, then agree (a rank given different data must not hang the others).
+  parallel::on_all_then_agree(
+      [&] {
+        SHELLFRAC_REQUIRE(npe_ == num_nodes_tri3 || npe_ == num_nodes_tri6,
+                          "DistributedMesh: nodes_per_element must be 3 or 6, got " << npe_);
+        SHELLFRAC_REQUIRE(static_cast<GlobalId>(part.size()) == ne,
+                          "DistributedMesh: the partition has " << part.size() << " entries for " << ne << " elements");
+        SHELLFRAC_REQUIRE(static_cast<GlobalId>(topo.element_edges.size()) == ne &&
+                              static_cast<GlobalId>(topo.neighbor.size()) == ne &&
+                              static_cast<GlobalId>(topo.element_interface.size()) == ne,
+                          "DistributedMesh: the edge topology does not match the mesh (" << ne << " elements)");
+        for (GlobalId e = 0; e < ne; ++e)
+          SHELLFRAC_REQUIRE(part[e] >= 0 && part[e] < num_ranks_, "DistributedMesh: element " << e << " has part "
+                                                                      << part[e] << ", not a rank in [0, "
+                                                                      << num_ranks_ << ")");
+      },
+      comm_);
+  {
+    unsigned long long h[2] = {hash_partition(part), 0}, lo[2] = {0, 0}, hi[2] = {0, 0};
+    h[1] = static_cast<unsigned long long>(ne);
+    MPI_Allreduce(h, lo, 2, MPI_UNSIGNED_LONG_LONG, MPI_MIN, comm_);
+    MPI_Allreduce(h, hi, 2, MPI_UNSIGNED_LONG_LONG, MPI_MAX, comm_);
+    SHELLFRAC_REQUIRE(lo[0] == hi[0] && lo[1] == hi[1],
+                      "DistributedMesh: the mesh or the partition differs between ranks (they must be identical)");
+  }
+
+  // 2. Owned elements (ascending gid), then the ghost layer: elements across an interface from an owned
+  //    element and owned elsewhere (ascending gid, unique).
+  for (GlobalId e = 0; e < ne; ++e)
+    if (part[e] == rank_) element_gid_.push_back(e);
+  num_owned_ = static_cast<LocalId>(element_gid_.size());
+  std::vector<GlobalId> ghosts;
+  for (const auto& f : topo.interfaces) {
+    const GlobalId a = f.minus.element, b = f.plus.element;
+    if (part[a] == rank_ && part[b] != rank_) ghosts.push_back(b);
+    if (part[b] == rank_ && part[a] != rank_) ghosts.push_back(a);
+  }
+  std::sort(ghosts.begin(), ghosts.end());
+  ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
+  element_gid_.insert(element_gid_.end(), ghosts.begin(), ghosts.end());
+  const LocalId nov = num_overlap();
+
+  // 3. Per-element data of the overlap: owner, block, DG nodes (coordinates, mesh node), directors.
+  const std::vector<Vec3> normals = mesh::reference_vertex_normals(mesh);
+  SHELLFRAC_REQUIRE(static_cast<GlobalId>(normals.size()) == mesh.num_nodes(),
+                    "DistributedMesh: reference_vertex_normals returned " << normals.size() << " normals for "
+                                                                           << mesh.num_nodes() << " nodes");
+  element_owner_.resize(nov);
+  element_block_.resize(nov);
+  coords_.resize(static_cast<std::size_t>(nov) * npe_);
+  mesh_node_.resize(static_cast<std::size_t>(nov) * npe_);
+  directors_.resize(static_cast<std::size_t>(nov) * num_vertices_tri);
+  neighbor_.assign(static_cast<std::size_t>(nov) * 3, -1);
+  neighbor_edge_.assign(static_cast<std::size_t>(nov) * 3, -1);
+  for (LocalId le = 0; le < nov; ++le) {
+    const GlobalId e = element_gid_[le];
+    element_owner_[le] = part[e];
+    element_block_[le] = mesh.element_block[e];
+    for (int a = 0; a < npe_; ++a) {
+      const GlobalId n = mesh.node(e, a);
+      mesh_node_[static_cast<std::size_t>(le) * npe_ + a] = n;
+      coords_[static_cast<std::size_t>(le) * npe_ + a] = mesh.coords[n];
+    }
+    for (int a = 0; a < num_vertices_tri; ++a) directors_[static_cast<std::size_t>(le) * 3 + a] = normals[mesh.node(e, a)];
+    for (int k = 0; k < 3; ++k) {
+      const auto& nb = topo.neighbor[e][k];
+      if (nb.element < 0) continue;
+      const LocalId ln = local_id(nb.element);
+      if (ln < 0) continue;
+      neighbor_[static_cast<std::size_t>(le) * 3 + k] = ln;
+      neighbor_edge_[static_cast<std::size_t>(le) * 3 + k] = nb.local_edge;
+    }
+  }
+
+  // 4. Interfaces with at least one owned side; owned by the lower of the two owners' ranks.
+  for (std::size_t i = 0; i < topo.interfaces.size(); ++i) {
+    const auto& f = topo.interfaces[i];
+    const int pm = part[f.minus.element], pp = part[f.plus.element];
+    if (pm != rank_ && pp != rank_) continue;
+    LocalInterface li;
+    li.gid = static_cast<GlobalId>(i);
+    li.minus = local_id(f.minus.element);
+    li.plus = local_id(f.plus.element);
+    li.minus_edge = f.minus.local_edge;
+    li.plus_edge = f.plus.local_edge;
+    li.owned = std::min(pm, pp) == rank_;
+    li.non_manifold = f.non_manifold;
+    SHELLFRAC_REQUIRE(li.minus >= 0 && li.plus >= 0, "DistributedMesh: interface " << i << " side not in the overlap");
+    interfaces_.push_back(li);
+  }
+
+  // 5. Boundary edges of owned elements, with their side sets.
+  for (std::size_t i = 0; i < topo.boundary.size(); ++i) {
+    const auto& b = topo.boundary[i];
+    if (part[b.element] != rank_) continue;
+    LocalBoundaryEdge lb;
+    lb.element = local_id(b.element);
+    lb.local_edge = b.local_edge;
+    if (i < topo.boundary_side_sets.size()) lb.side_sets = topo.boundary_side_sets[i];
+    boundary_.push_back(std::move(lb));
+  }
+
+  // 6. Tpetra maps and transfers (collective, also on a rank without elements).
+  auto tcomm = Teuchos::rcp(new Teuchos::MpiComm<int>(comm_));
+  const std::vector<tpetra_go> gids(element_gid_.begin(), element_gid_.end());
+  maps_ = std::make_unique<ElementMaps>();
+  maps_->owned = Teuchos::rcp(new map_type(static_cast<Tpetra::global_size_t>(ne),
+                                           view_of(gids, static_cast<std::size_t>(num_owned_)), tpetra_go(0), tcomm));
+  maps_->overlap = Teuchos::rcp(new map_type(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                             view_of(gids, gids.size()), tpetra_go(0), tcomm));
+  maps_->importer = Teuchos::rcp(new import_type(maps_->owned, maps_->overlap));
+  maps_->exporter = Teuchos::rcp(new export_type(maps_->overlap, maps_->owned));
+}
+
+DistributedMesh::~DistributedMesh() = default;
+
+LocalId DistributedMesh::local_id(GlobalId gid) const {
+  // Owned gids [0, num_owned) and ghost gids [num_owned, num_overlap) are each sorted.
+  const auto owned_end = element_gid_.begin() + num_owned_;
+  auto it = std::lower_bound(element_gid_.begin(), owned_end, gid);
+  if (it != owned_end && *it == gid) return static_cast<LocalId>(it - element_gid_.begin());
+  it = std::lower_bound(owned_end, element_gid_.end(), gid);
+  if (it != element_gid_.end() && *it == gid) return static_cast<LocalId>(it - element_gid_.begin());
+  return -1;
+}
+
+}  // namespace shellfrac::dist
