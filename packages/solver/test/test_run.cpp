@@ -81,9 +81,10 @@ void run_and_check(const std::string& deck_path, const mesh::SerialMesh& expecte
     for (int a = 0; a < 6; ++a) {
       const auto& x = expected.coords[expected.node(e, a)];
       EXPECT_EQ(res.node_coords[6 * i + a], x) << "element " << e << " node " << a;
-      if (a < 3)
+      if (a < 3) {
         for (int c = 0; c < 3; ++c)
           EXPECT_EQ(res.nodal[0][6 + c][6 * i + a], normals[expected.node(e, a)][c]) << "director, element " << e;
+      }
     }
     const double rank = res.element[0][1][i];
     EXPECT_TRUE(rank >= 0 && rank < parallel::size());

@@ -9,7 +9,7 @@
 ///  * Nodal vectors are written as <name>_x/_y/_z (ParaView glues them; "displ" is applied as displacement
 ///    automatically); element scalars as element variables in every block.
 ///  * Parallel: np == 1 writes `path`; np > 1 writes one file per rank `path.<np>.<rank>` (Nemesis naming,
-///    zero-padded to the width of np, e.g. run.exo.04.01), which ParaView opens as one data set;
+///    rank zero-padded to the width of np, e.g. run.exo.3.0, run.exo.12.03), which ParaView opens as one data set;
 ///    shellfrac_exojoin merges a set into one file.
 ///  * Each step is flushed (ex_update) so a crashed run leaves a readable file.
 #include <mpi.h>
@@ -35,6 +35,9 @@ struct ResultsLayout {
   std::vector<std::string> element_scalars; ///< e.g. {"block", "rank"}
   std::vector<std::string> info;            ///< information records (e.g. the expanded input deck lines)
 };
+
+/// Longest block, set or variable name an Exodus II file stores (Exodus' MAX_NAME_LENGTH).
+constexpr std::size_t max_exodus_name_length = 32;
 
 /// File name of rank `rank` of `np` for base path `path` (see above).
 std::string rank_file_name(const std::string& path, int np, int rank);
@@ -82,6 +85,13 @@ struct ExodusResults {
 /// Reads `path` if it exists; otherwise the per-rank set `path.<np>.<rank>` (np found from the directory).
 /// Throws InputError naming the path if neither exists or a file is not a shellfrac-style results file.
 ExodusResults read_results(const std::string& path);
+
+/// The files of the per-rank set `path.<np>.<rank>` found next to `path` (ordered by rank; empty if there is
+/// none). Throws InputError if the set is incomplete or several sets (different np) are present.
+std::vector<std::string> find_rank_files(const std::string& path);
+
+/// Reads the given files (e.g. find_rank_files(path)) as one data set, merged by element global id.
+ExodusResults read_results_files(const std::vector<std::string>& files);
 
 /// Writes a merged data set as one file (the join tool).
 void write_results(const ExodusResults& results, const std::string& path);

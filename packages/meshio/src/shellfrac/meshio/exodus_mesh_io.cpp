@@ -1,1 +1,392 @@
-// stub: to be implemented
+#include "shellfrac/meshio/exodus_mesh_io.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <new>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "shellfrac/core/error.hpp"
+#include "shellfrac/io/exodus_check.hpp"
+#include "shellfrac/meshio/gmsh_reader.hpp"
+
+namespace shellfrac::meshio {
+
+namespace exo = io::exo;
+
+namespace {
+
+/// Largest entity count accepted from a file before allocating (a hostile header must not exhaust memory).
+constexpr std::int64_t max_count = std::int64_t{1} << 31;
+
+/// Per-block facts the reader needs after the block loop.
+struct BlockInfo {
+  std::int64_t id = 0;
+  std::int64_t count = 0;
+  bool shell = false;  ///< TRISHELL*: side numbers 3,4,5 are the edges
+};
+
+/// Nodes per element implied by an Exodus triangle type name, 0 if the type is not a supported triangle,
+/// -1 if the name does not fix it (TRI, TRIANGLE, TRISHELL). Sets `shell`.
+int triangle_type_nodes(const std::string& type, bool& shell) {
+  const std::string t = exo::upper(type);
+  shell = t.rfind("TRISHELL", 0) == 0;
+  if (t == "TRI3" || t == "TRISHELL3" || t == "TRIANGLE3") return 3;
+  if (t == "TRI6" || t == "TRISHELL6" || t == "TRIANGLE6") return 6;
+  if (t == "TRI" || t == "TRIANGLE" || t == "TRISHELL") return -1;
+  return 0;
+}
+
+/// Reads an entity count header value and checks it is sane.
+std::int64_t checked_count(std::int64_t n, const std::string& path, const char* what) {
+  SHELLFRAC_INPUT_REQUIRE(n >= 0 && n < max_count, path << ": invalid " << what << " count " << n);
+  return n;
+}
+
+/// Exodus entity id -> SerialMesh id (positive int).
+int checked_id(std::int64_t id, const std::string& path, const char* what) {
+  SHELLFRAC_INPUT_REQUIRE(id > 0 && id <= exo::max_stored_int,
+                          path << ": " << what << " has id " << id << "; ids must be positive 32-bit integers");
+  return static_cast<int>(id);
+}
+
+std::string default_name(const std::string& name, const char* prefix, std::int64_t id) {
+  return name.empty() ? std::string(prefix) + "_" + std::to_string(id) : name;
+}
+
+/// Ids of all entities of `type` (count from the header).
+std::vector<std::int64_t> get_ids(int exo_id, ex_entity_type type, std::int64_t count, const std::string& path,
+                                  const char* what) {
+  std::vector<std::int64_t> ids(static_cast<std::size_t>(count));
+  if (count > 0) SHELLFRAC_EXO_INPUT_CHECK(ex_get_ids(exo_id, type, ids.data()), path << ": cannot read " << what << " ids");
+  return ids;
+}
+
+/// Reads one set's entries (and extra list for side sets) as 1-based file values.
+void get_set(int exo_id, ex_entity_type type, std::int64_t id, std::vector<std::int64_t>& entries,
+             std::vector<std::int64_t>* extra, const std::string& path, const std::string& what) {
+  std::int64_t n = 0, ndf = 0;
+  SHELLFRAC_EXO_INPUT_CHECK(ex_get_set_param(exo_id, type, id, &n, &ndf), path << ": cannot read " << what);
+  checked_count(n, path, what.c_str());
+  entries.assign(static_cast<std::size_t>(n), 0);
+  if (extra) extra->assign(static_cast<std::size_t>(n), 0);
+  if (n > 0)
+    SHELLFRAC_EXO_INPUT_CHECK(ex_get_set(exo_id, type, id, entries.data(), extra ? extra->data() : nullptr),
+                              path << ": cannot read the entries of " << what);
+}
+
+/// 1-based file indices -> sorted, unique 0-based indices; each must be in [1, n].
+std::vector<GlobalId> to_sorted_indices(const std::vector<std::int64_t>& v, std::int64_t n, const std::string& path,
+                                        const std::string& what, const char* entity) {
+  std::vector<GlobalId> out;
+  out.reserve(v.size());
+  for (auto x : v) {
+    SHELLFRAC_INPUT_REQUIRE(x >= 1 && x <= n, path << ": " << what << " refers to " << entity << " " << x
+                                                   << ", but the file has " << n << " " << entity << "s");
+    out.push_back(x - 1);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+mesh::SerialMesh read_exodus_impl(const std::string& path) {
+  std::error_code ec;
+  SHELLFRAC_INPUT_REQUIRE(std::filesystem::is_regular_file(path, ec), path << ": Exodus file not found");
+  exo::File file = exo::open_read(path);
+  SHELLFRAC_INPUT_REQUIRE(file.is_open(), path << ": cannot open as an Exodus II file (" << exo::last_error() << ")");
+  const int id = file.id();
+
+  ex_init_params p{};
+  SHELLFRAC_EXO_INPUT_CHECK(ex_get_init_ext(id, &p), path << ": cannot read the Exodus header");
+  SHELLFRAC_INPUT_REQUIRE(p.num_dim == 2 || p.num_dim == 3,
+                          path << ": " << p.num_dim << "-dimensional coordinates; a shell mesh needs 2 or 3");
+  const std::int64_t num_nodes = checked_count(p.num_nodes, path, "node");
+  const std::int64_t num_elem = checked_count(p.num_elem, path, "element");
+  checked_count(p.num_elem_blk, path, "element block");
+  checked_count(p.num_node_sets, path, "node set");
+  checked_count(p.num_side_sets, path, "side set");
+  checked_count(p.num_elem_sets, path, "element set");
+  SHELLFRAC_INPUT_REQUIRE(num_elem > 0 && p.num_elem_blk > 0, path << ": the file has no elements");
+
+  mesh::SerialMesh m;
+  m.source = path;
+
+  // Coordinates.
+  {
+    std::vector<double> x(static_cast<std::size_t>(num_nodes)), y(x.size()), z(x.size(), 0.0);
+    if (num_nodes > 0)
+      SHELLFRAC_EXO_INPUT_CHECK(ex_get_coord(id, x.data(), y.data(), p.num_dim == 3 ? z.data() : nullptr),
+                                path << ": cannot read the node coordinates");
+    m.coords.resize(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) m.coords[i] = {x[i], y[i], z[i]};
+  }
+
+  // Element blocks, in file order; elements are numbered in that order.
+  const auto block_ids = get_ids(id, EX_ELEM_BLOCK, p.num_elem_blk, path, "element block");
+  const auto block_names = exo::get_names(id, EX_ELEM_BLOCK, p.num_elem_blk, path);
+  std::vector<BlockInfo> blocks;
+  std::int64_t total = 0;
+  std::size_t first_block_with_elements = 0;
+  m.nodes_per_element = 0;
+  for (std::size_t b = 0; b < block_ids.size(); ++b) {
+    const std::string name = default_name(block_names[b], "block", block_ids[b]);
+    const std::string what = "element block " + std::to_string(block_ids[b]) + " ('" + name + "')";
+    ex_block blk{};
+    blk.id = block_ids[b];
+    blk.type = EX_ELEM_BLOCK;
+    SHELLFRAC_EXO_INPUT_CHECK(ex_get_block_param(id, &blk), path << ": cannot read " << what);
+    blk.topology[MAX_STR_LENGTH] = '\0';
+    const std::string type = blk.topology;
+    checked_count(blk.num_entry, path, what.c_str());
+    bool shell = false;
+    int npe = triangle_type_nodes(type, shell);
+    if (blk.num_entry == 0) {  // Exodus stores empty blocks with type "NULL" and 0 nodes per element
+      m.blocks.push_back({name, checked_id(block_ids[b], path, what.c_str())});
+      blocks.push_back({block_ids[b], 0, shell});
+      continue;
+    }
+    if (npe == -1 && (blk.num_nodes_per_entry == 3 || blk.num_nodes_per_entry == 6))
+      npe = static_cast<int>(blk.num_nodes_per_entry);
+    SHELLFRAC_INPUT_REQUIRE(npe > 0 && npe == blk.num_nodes_per_entry,
+                            path << ": " << what << " has unsupported element type '" << type << "' with "
+                                 << blk.num_nodes_per_entry
+                                 << " nodes per element; shell meshes need TRI3/TRISHELL3 or TRI6/TRISHELL6");
+    if (blk.num_entry > 0) {
+      if (m.nodes_per_element == 0) {
+        m.nodes_per_element = npe;
+        first_block_with_elements = b;
+      }
+      SHELLFRAC_INPUT_REQUIRE(npe == m.nodes_per_element,
+                              path << ": " << what << " has " << npe << "-node elements but element block "
+                                   << block_ids[first_block_with_elements] << " has " << m.nodes_per_element
+                                   << "-node elements; mixed TRI3/TRI6 blocks are not supported");
+    }
+    total += blk.num_entry;
+    SHELLFRAC_INPUT_REQUIRE(total <= num_elem, path << ": the element blocks hold more elements than the header's "
+                                                    << num_elem);
+    const int block_index = static_cast<int>(m.blocks.size());
+    m.blocks.push_back({name, checked_id(block_ids[b], path, what.c_str())});
+    blocks.push_back({block_ids[b], blk.num_entry, shell});
+    if (blk.num_entry == 0) continue;
+    std::vector<std::int64_t> conn(static_cast<std::size_t>(blk.num_entry * npe));
+    SHELLFRAC_EXO_INPUT_CHECK(ex_get_conn(id, EX_ELEM_BLOCK, blk.id, conn.data(), nullptr, nullptr),
+                              path << ": cannot read the connectivity of " << what);
+    for (std::size_t k = 0; k < conn.size(); ++k) {
+      SHELLFRAC_INPUT_REQUIRE(conn[k] >= 1 && conn[k] <= num_nodes,
+                              path << ": " << what << ", element " << k / npe + 1 << " of the block refers to node "
+                                   << conn[k] << ", but the file has " << num_nodes << " nodes");
+      m.connectivity.push_back(conn[k] - 1);
+    }
+    m.element_block.insert(m.element_block.end(), static_cast<std::size_t>(blk.num_entry), block_index);
+  }
+  SHELLFRAC_INPUT_REQUIRE(total == num_elem, path << ": the element blocks hold " << total
+                                                  << " elements but the header says " << num_elem);
+
+  // Per element: does side s of a TRISHELL element (3,4,5) or a TRI element (1,2,3) map to an edge?
+  std::vector<char> elem_is_shell;
+  elem_is_shell.reserve(static_cast<std::size_t>(num_elem));
+  for (const auto& b : blocks) elem_is_shell.insert(elem_is_shell.end(), static_cast<std::size_t>(b.count), b.shell);
+
+  // Node sets.
+  {
+    const auto ids = get_ids(id, EX_NODE_SET, p.num_node_sets, path, "node set");
+    const auto names = exo::get_names(id, EX_NODE_SET, p.num_node_sets, path);
+    std::vector<std::int64_t> entries;
+    for (std::size_t s = 0; s < ids.size(); ++s) {
+      mesh::NodeSet ns;
+      ns.name = default_name(names[s], "nodeset", ids[s]);
+      const std::string what = "node set " + std::to_string(ids[s]) + " ('" + ns.name + "')";
+      ns.id = checked_id(ids[s], path, what.c_str());
+      get_set(id, EX_NODE_SET, ids[s], entries, nullptr, path, what);
+      ns.nodes = to_sorted_indices(entries, num_nodes, path, what, "node");
+      m.node_sets.push_back(std::move(ns));
+    }
+  }
+
+  // Side sets.
+  {
+    const auto ids = get_ids(id, EX_SIDE_SET, p.num_side_sets, path, "side set");
+    const auto names = exo::get_names(id, EX_SIDE_SET, p.num_side_sets, path);
+    std::vector<std::int64_t> elems, sides;
+    for (std::size_t s = 0; s < ids.size(); ++s) {
+      mesh::SideSet ss;
+      ss.name = default_name(names[s], "sideset", ids[s]);
+      const std::string what = "side set " + std::to_string(ids[s]) + " ('" + ss.name + "')";
+      ss.id = checked_id(ids[s], path, what.c_str());
+      get_set(id, EX_SIDE_SET, ids[s], elems, &sides, path, what);
+      for (std::size_t k = 0; k < elems.size(); ++k) {
+        const std::int64_t e = elems[k];
+        SHELLFRAC_INPUT_REQUIRE(e >= 1 && e <= num_elem, path << ": " << what << " refers to element " << e
+                                                              << ", but the file has " << num_elem << " elements");
+        const bool shell = elem_is_shell[static_cast<std::size_t>(e - 1)] != 0;
+        const std::int64_t first = shell ? 3 : 1;
+        SHELLFRAC_INPUT_REQUIRE(!(shell && (sides[k] == 1 || sides[k] == 2)),
+                                path << ": " << what << ", element " << e << ": side " << sides[k]
+                                     << " is a face of a shell element; side sets of shells must use edge sides 3, 4, 5");
+        SHELLFRAC_INPUT_REQUIRE(sides[k] >= first && sides[k] < first + 3,
+                                path << ": " << what << ", element " << e << ": invalid side number " << sides[k]
+                                     << " (expected " << first << ".." << first + 2 << ")");
+        ss.elements.push_back(e - 1);
+        ss.local_edges.push_back(static_cast<int>(sides[k] - first));
+      }
+      m.side_sets.push_back(std::move(ss));
+    }
+  }
+
+  // Element sets.
+  {
+    const auto ids = get_ids(id, EX_ELEM_SET, p.num_elem_sets, path, "element set");
+    const auto names = exo::get_names(id, EX_ELEM_SET, p.num_elem_sets, path);
+    std::vector<std::int64_t> entries;
+    for (std::size_t s = 0; s < ids.size(); ++s) {
+      mesh::ElementSet es;
+      es.name = default_name(names[s], "elemset", ids[s]);
+      const std::string what = "element set " + std::to_string(ids[s]) + " ('" + es.name + "')";
+      es.id = checked_id(ids[s], path, what.c_str());
+      get_set(id, EX_ELEM_SET, ids[s], entries, nullptr, path, what);
+      es.elements = to_sorted_indices(entries, num_elem, path, what, "element");
+      m.element_sets.push_back(std::move(es));
+    }
+  }
+  return m;
+}
+
+/// Writes one set of `type` with 1-based entries (and optional side numbers).
+void put_set(int exo_id, ex_entity_type type, int set_id, const std::vector<std::int64_t>& entries,
+             const std::vector<std::int64_t>* extra, const std::string& path) {
+  SHELLFRAC_EXO_CHECK(ex_put_set_param(exo_id, type, set_id, static_cast<std::int64_t>(entries.size()), 0),
+                      path << ": set " << set_id);
+  if (!entries.empty())
+    SHELLFRAC_EXO_CHECK(ex_put_set(exo_id, type, set_id, entries.data(), extra ? extra->data() : nullptr),
+                        path << ": set " << set_id);
+}
+
+template <class Set>
+std::vector<std::string> names_of(const std::vector<Set>& sets) {
+  std::vector<std::string> out;
+  for (const auto& s : sets) out.push_back(s.name);
+  return out;
+}
+
+}  // namespace
+
+mesh::SerialMesh read_exodus_mesh(const std::string& path) {
+  mesh::SerialMesh m;
+  try {
+    m = read_exodus_impl(path);
+  } catch (const std::bad_alloc&) {
+    SHELLFRAC_INPUT_REQUIRE(false, path << ": the Exodus file declares more data than fits in memory");
+  } catch (const std::length_error&) {
+    SHELLFRAC_INPUT_REQUIRE(false, path << ": the Exodus file declares more data than fits in memory");
+  }
+  mesh::check_mesh(m);
+  return m;
+}
+
+void write_exodus_mesh(const mesh::SerialMesh& mesh, const std::string& path) {
+  const int npe = mesh.nodes_per_element;
+  SHELLFRAC_REQUIRE(npe == 3 || npe == 6, path << ": nodes_per_element is " << npe);
+  SHELLFRAC_REQUIRE(mesh.connectivity.size() == mesh.element_block.size() * static_cast<std::size_t>(npe),
+                    path << ": connectivity size does not match the element count");
+  SHELLFRAC_REQUIRE(mesh.num_nodes() < exo::max_stored_int && mesh.num_elements() < exo::max_stored_int,
+                    path << ": mesh too large for 32-bit Exodus integers");
+  exo::check_name_lengths(names_of(mesh.blocks), "element block", path);
+  exo::check_name_lengths(names_of(mesh.node_sets), "node set", path);
+  exo::check_name_lengths(names_of(mesh.side_sets), "side set", path);
+  exo::check_name_lengths(names_of(mesh.element_sets), "element set", path);
+
+  // Exodus numbers elements block by block: file element k is mesh element order[k].
+  const std::size_t ne = mesh.element_block.size();
+  std::vector<std::size_t> order(ne);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return mesh.element_block[a] < mesh.element_block[b]; });
+  std::vector<std::int64_t> file_number(ne);  // 1-based file element number of each mesh element
+  for (std::size_t k = 0; k < ne; ++k) file_number[order[k]] = static_cast<std::int64_t>(k) + 1;
+
+  exo::File file = exo::create(path);
+  SHELLFRAC_REQUIRE(file.is_open(), path << ": cannot create the Exodus file: " << exo::last_error());
+  const int id = file.id();
+
+  ex_init_params p{};
+  const std::string title = "shellfrac mesh from " + mesh.source;
+  title.copy(p.title, MAX_LINE_LENGTH);
+  p.num_dim = 3;
+  p.num_nodes = mesh.num_nodes();
+  p.num_elem = mesh.num_elements();
+  p.num_elem_blk = static_cast<std::int64_t>(mesh.blocks.size());
+  p.num_node_sets = static_cast<std::int64_t>(mesh.node_sets.size());
+  p.num_side_sets = static_cast<std::int64_t>(mesh.side_sets.size());
+  p.num_elem_sets = static_cast<std::int64_t>(mesh.element_sets.size());
+  SHELLFRAC_EXO_CHECK(ex_put_init_ext(id, &p), path);
+
+  if (!mesh.coords.empty()) {
+    std::vector<double> x, y, z;
+    for (const auto& c : mesh.coords) {
+      x.push_back(c[0]);
+      y.push_back(c[1]);
+      z.push_back(c[2]);
+    }
+    SHELLFRAC_EXO_CHECK(ex_put_coord(id, x.data(), y.data(), z.data()), path);
+  }
+
+  const char* type = npe == 3 ? "TRISHELL3" : "TRISHELL6";
+  for (std::size_t b = 0; b < mesh.blocks.size(); ++b) {
+    std::vector<std::int64_t> conn;
+    for (std::size_t e : order)
+      if (mesh.element_block[e] == static_cast<int>(b))
+        for (int a = 0; a < npe; ++a) conn.push_back(mesh.connectivity[e * npe + a] + 1);
+    const std::int64_t count = static_cast<std::int64_t>(conn.size()) / npe;
+    SHELLFRAC_EXO_CHECK(ex_put_block(id, EX_ELEM_BLOCK, mesh.blocks[b].id, type, count, npe, 0, 0, 0),
+                        path << ": element block " << mesh.blocks[b].id);
+    if (count > 0)
+      SHELLFRAC_EXO_CHECK(ex_put_conn(id, EX_ELEM_BLOCK, mesh.blocks[b].id, conn.data(), nullptr, nullptr),
+                          path << ": element block " << mesh.blocks[b].id);
+  }
+  SHELLFRAC_EXO_CHECK(exo::put_names(id, EX_ELEM_BLOCK, names_of(mesh.blocks)), path);
+
+  for (const auto& ns : mesh.node_sets) {
+    std::vector<std::int64_t> entries;
+    for (GlobalId n : ns.nodes) entries.push_back(n + 1);
+    put_set(id, EX_NODE_SET, ns.id, entries, nullptr, path);
+  }
+  SHELLFRAC_EXO_CHECK(exo::put_names(id, EX_NODE_SET, names_of(mesh.node_sets)), path);
+
+  for (const auto& ss : mesh.side_sets) {
+    SHELLFRAC_REQUIRE(ss.elements.size() == ss.local_edges.size(), path << ": side set '" << ss.name << "' sizes differ");
+    std::vector<std::int64_t> elems, sides;
+    for (std::size_t k = 0; k < ss.elements.size(); ++k) {
+      elems.push_back(file_number.at(static_cast<std::size_t>(ss.elements[k])));
+      sides.push_back(ss.local_edges[k] + 3);  // TRISHELL: sides 3,4,5 are edges 0,1,2
+    }
+    put_set(id, EX_SIDE_SET, ss.id, elems, &sides, path);
+  }
+  SHELLFRAC_EXO_CHECK(exo::put_names(id, EX_SIDE_SET, names_of(mesh.side_sets)), path);
+
+  for (const auto& es : mesh.element_sets) {
+    std::vector<std::int64_t> entries;
+    for (GlobalId e : es.elements) entries.push_back(file_number.at(static_cast<std::size_t>(e)));
+    std::sort(entries.begin(), entries.end());
+    put_set(id, EX_ELEM_SET, es.id, entries, nullptr, path);
+  }
+  SHELLFRAC_EXO_CHECK(exo::put_names(id, EX_ELEM_SET, names_of(mesh.element_sets)), path);
+
+  SHELLFRAC_EXO_CHECK(file.close(), path);
+}
+
+mesh::SerialMesh read_mesh_file(const std::string& path) {
+  std::error_code ec;
+  SHELLFRAC_INPUT_REQUIRE(std::filesystem::is_regular_file(path, ec), path << ": mesh file not found");
+  std::string ext = exo::upper(std::filesystem::path(path).extension().string());
+  if (ext == ".MSH") return read_gmsh(path);
+  if (ext == ".EXO" || ext == ".E" || ext == ".G" || ext == ".GEN" || ext == ".EX2") return read_exodus_mesh(path);
+  SHELLFRAC_INPUT_REQUIRE(false, path << ": unknown mesh file extension '"
+                                      << std::filesystem::path(path).extension().string()
+                                      << "' (expected .msh for Gmsh, or .exo .e .g .gen .ex2 for Exodus II)");
+  return {};
+}
+
+}  // namespace shellfrac::meshio

@@ -144,6 +144,11 @@ Simulation::Simulation(const std::string& deck_file, MPI_Comm comm) : comm_(comm
     SHELLFRAC_INPUT_REQUIRE(found, deck_.file << ": 'Blocks->" << name << "' names no block of the mesh (" << m.source
                                               << "); its blocks are:" << os.str());
   }
+  // Results are Exodus files, whose names are limited: fail now, not after the run has started writing.
+  for (const auto& b : m.blocks)
+    SHELLFRAC_INPUT_REQUIRE(b.name.size() <= io::max_exodus_name_length,
+                            m.source << ": block name '" << b.name << "' is longer than "
+                                     << io::max_exodus_name_length << " characters (Exodus II limit)");
   const auto topo = mesh::build_edge_topology(m, deck_.mesh.non_manifold);
   for (const auto& f : topo.interfaces)
     SHELLFRAC_INPUT_REQUIRE(!f.same_orientation || f.non_manifold,

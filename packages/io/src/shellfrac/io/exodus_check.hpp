@@ -1,0 +1,172 @@
+#pragma once
+/// \file exodus_check.hpp
+/// Internal helpers around the Exodus II C API (libexodusii 6.02), shared by shellfrac::io (results) and
+/// shellfrac::meshio (meshes). Not part of the public API: include it only from .cpp files.
+///  * SHELLFRAC_EXO_CHECK(call, msg): a failed call (return < 0) throws shellfrac::Error (writing; our fault or
+///    the file system's). Positive returns are Exodus warnings and are accepted.
+///  * SHELLFRAC_EXO_INPUT_CHECK(call, msg): the same, but throws shellfrac::InputError (reading a user's file).
+///  * exo::File owns an open file id; files are opened/created with double words and the 64-bit integer API.
+#include <exodusII.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "shellfrac/core/error.hpp"
+
+namespace shellfrac::io::exo {
+
+/// The Exodus library's last error message ("ex_open: ... (code -51)"), for exception texts.
+inline std::string last_error() {
+  const char* msg = nullptr;
+  const char* func = nullptr;
+  int code = 0;
+  ex_get_err(&msg, &func, &code);
+  std::string s;
+  if (func != nullptr && *func != '\0') s += std::string(func) + ": ";
+  s += (msg != nullptr && *msg != '\0') ? msg : "unknown error";
+  s += " (code " + std::to_string(code) + ")";
+  return s;
+}
+
+/// An open Exodus file id, closed on destruction (errors on that close are ignored; call close() to check).
+class File {
+ public:
+  File() = default;
+  explicit File(int id) : id_(id) {}
+  ~File() {
+    if (id_ >= 0) ex_close(id_);
+  }
+  File(File&& o) noexcept : id_(std::exchange(o.id_, -1)) {}
+  File& operator=(File&& o) noexcept {
+    if (this != &o) {
+      if (id_ >= 0) ex_close(id_);
+      id_ = std::exchange(o.id_, -1);
+    }
+    return *this;
+  }
+  File(const File&) = delete;
+  File& operator=(const File&) = delete;
+
+  int id() const { return id_; }
+  bool is_open() const { return id_ >= 0; }
+  /// Closes the file; returns the ex_close code (0 if it was not open).
+  int close() { return id_ >= 0 ? ex_close(std::exchange(id_, -1)) : 0; }
+
+ private:
+  int id_ = -1;
+};
+
+/// Opens an existing file read-only (double words, 64-bit integer API). Returns a closed File on failure.
+inline File open_read(const std::string& path) {
+  int cpu_ws = 8, io_ws = 0;
+  float version = 0;
+  const int id = ex_open(path.c_str(), EX_READ | EX_ALL_INT64_API, &cpu_ws, &io_ws, &version);
+  if (id < 0) return File();
+  File f(id);
+  // Read names as long as the file stores them (Exodus truncates to the library's current maximum).
+  const auto used = ex_inquire_int(id, EX_INQ_DB_MAX_USED_NAME_LENGTH);
+  ex_set_max_name_length(id, static_cast<int>(std::clamp<std::int64_t>(used, MAX_NAME_LENGTH, 255)));
+  return f;
+}
+
+/// Creates (clobbers) a file with 8-byte reals on disk and the 64-bit integer API (32-bit integers on disk,
+/// the most widely readable form). Returns a closed File on failure.
+inline File create(const std::string& path) {
+  int cpu_ws = 8, io_ws = 8;
+  const int id = ex_create(path.c_str(), EX_CLOBBER | EX_ALL_INT64_API, &cpu_ws, &io_ws);
+  if (id < 0) return File();
+  ex_set_max_name_length(id, MAX_NAME_LENGTH);
+  return File(id);
+}
+
+/// Largest value an integer stored by create() can take (ids, connectivity, map entries).
+constexpr std::int64_t max_stored_int = 2147483647;
+
+/// Buffer size of a name read by open_read() (max name length + NUL + slack).
+constexpr std::size_t name_buffer = 257;
+
+/// Reads the names of all `count` entities of `type` (element blocks, sets, variables when `variables`).
+/// Empty strings where the file has none. Throws InputError naming `path` on failure.
+inline std::vector<std::string> get_names(int exo, ex_entity_type type, std::int64_t count, const std::string& path,
+                                          bool variables = false) {
+  std::vector<std::string> out;
+  if (count <= 0) return out;
+  std::vector<std::vector<char>> buf(static_cast<std::size_t>(count), std::vector<char>(name_buffer, '\0'));
+  std::vector<char*> ptr;
+  for (auto& b : buf) ptr.push_back(b.data());
+  const int rc = variables ? ex_get_variable_names(exo, type, static_cast<int>(count), ptr.data())
+                           : ex_get_names(exo, type, ptr.data());
+  SHELLFRAC_INPUT_REQUIRE(rc >= 0, path << ": cannot read " << (variables ? "variable " : "entity ") << "names: "
+                                        << last_error());
+  for (auto& b : buf) {
+    b.back() = '\0';
+    std::string s(b.data());
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+/// Checks that every name fits Exodus' 32-character limit (Error otherwise; `what` names the kind).
+inline void check_name_lengths(const std::vector<std::string>& names, const std::string& what,
+                               const std::string& path) {
+  for (const auto& n : names)
+    SHELLFRAC_REQUIRE(n.size() <= static_cast<std::size_t>(MAX_NAME_LENGTH),
+                      path << ": " << what << " name '" << n << "' is longer than Exodus' limit of " << MAX_NAME_LENGTH
+                           << " characters");
+}
+
+/// Writes names for all entities of `type` (or variable names when `variables`).
+inline int put_names(int exo, ex_entity_type type, const std::vector<std::string>& names, bool variables = false) {
+  if (names.empty()) return 0;
+  std::vector<std::vector<char>> buf;
+  std::vector<char*> ptr;
+  for (const auto& n : names) buf.emplace_back(n.c_str(), n.c_str() + n.size() + 1);
+  for (auto& b : buf) ptr.push_back(b.data());
+  return variables ? ex_put_variable_names(exo, type, static_cast<int>(names.size()), ptr.data())
+                   : ex_put_names(exo, type, ptr.data());
+}
+
+/// Writes information records (each at most 80 characters: longer lines are wrapped over several records).
+inline int put_info(int exo, const std::vector<std::string>& lines) {
+  std::vector<std::vector<char>> buf;
+  for (const auto& line : lines) {
+    std::size_t pos = 0;
+    do {
+      const std::string part = line.substr(pos, MAX_LINE_LENGTH);
+      buf.emplace_back(part.c_str(), part.c_str() + part.size() + 1);
+      pos += MAX_LINE_LENGTH;
+    } while (pos < line.size());
+  }
+  if (buf.empty()) return 0;
+  std::vector<char*> ptr;
+  for (auto& b : buf) ptr.push_back(b.data());
+  return ex_put_info(exo, static_cast<int>(ptr.size()), ptr.data());
+}
+
+/// Upper-cased copy (element type names are case-insensitive).
+inline std::string upper(std::string s) {
+  for (auto& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return s;
+}
+
+}  // namespace shellfrac::io::exo
+
+/// Checks an Exodus call made while writing: a negative return throws shellfrac::Error with `msg` and the
+/// library's message.
+#define SHELLFRAC_EXO_CHECK(call, msg)                                                                    \
+  do {                                                                                                  \
+    const int shellfrac_exo_rc_ = (call);                                                               \
+    SHELLFRAC_REQUIRE(shellfrac_exo_rc_ >= 0, msg << ": " #call " failed: " << ::shellfrac::io::exo::last_error()); \
+  } while (0)
+
+/// Checks an Exodus call made while reading a user's file: a negative return throws shellfrac::InputError.
+#define SHELLFRAC_EXO_INPUT_CHECK(call, msg)                                                              \
+  do {                                                                                                  \
+    const int shellfrac_exo_rc_ = (call);                                                               \
+    SHELLFRAC_INPUT_REQUIRE(shellfrac_exo_rc_ >= 0, msg << ": " << ::shellfrac::io::exo::last_error());   \
+  } while (0)
