@@ -1,0 +1,323 @@
+#pragma once
+/// \file dg_element.hpp
+/// The DG shell operator on one element and on one interface (math.md §5; paper §4.2, eqs. 41-44).
+///  * DgElementRef: reference data of an element, constant in time (area-point geometry, shape function
+///    derivatives, reference strain offsets, edge-point data and lifting weights W).
+///  * dg_element_forces: DG derivatives by lifting of the jumps over the element's lifted edges (math.md
+///    §5.2), strains, resultants (a point law passed in), the element's internal forces on its own nodes
+///    and its lifting fluxes on the neighbours' edge nodes (§5.4). Returns the element's strain energy.
+///  * dg_penalty_forces: the interface stabilization forces (§5.5, SEED eq. 52) and energy.
+/// Sign convention: forces are gradients of the energy (internal forces); the acceleration is
+/// (f_ext - f)/m. Spatial director moments g (3-vectors) are projected with Lambda-bar^T by the caller.
+/// Pure functions on plain arrays, usable in Kokkos kernels; they write only their own outputs, so the
+/// caller assembles by gather in a fixed order (no atomics).
+///
+/// Edge-local node order of local edge k: (first vertex, second vertex, mid-side) in the element's own
+/// counter-clockwise traversal, i.e. nodes edge_vertex[k][0], edge_vertex[k][1], 3 + k; the edge
+/// parameter s runs from the first to the second vertex. Edge point g sits at s = edge3_rule.s[g].
+#include <Kokkos_Macros.hpp>
+
+#include "shellfrac/core/types.hpp"
+#include "shellfrac/disc/element_geometry.hpp"
+#include "shellfrac/disc/quadrature.hpp"
+#include "shellfrac/disc/shell_strains.hpp"
+#include "shellfrac/disc/small_tensor.hpp"
+#include "shellfrac/disc/stress_power.hpp"
+#include "shellfrac/disc/triangle_basis.hpp"
+
+namespace shellfrac::disc {
+
+constexpr int num_area_points = 6;  ///< tri6_rule
+constexpr int num_edge_points = 3;  ///< edge3_rule
+
+/// Node of the element at edge-local position j (0, 1: vertices; 2: mid-side) of local edge k.
+KOKKOS_INLINE_FUNCTION int edge_node(int k, int j) {
+  return j == 2 ? 3 + k : (j == 0 ? k : (k + 1) % 3);  // = edge_vertex[k][j] for j < 2
+}
+
+/// Quadratic shape values along an edge at parameter s, edge-local order (vertex, vertex, mid-side).
+KOKKOS_INLINE_FUNCTION void edge_shape_p2(double s, double n[3]) {
+  n[0] = (1 - s) * (1 - 2 * s);
+  n[1] = s * (2 * s - 1);
+  n[2] = 4 * s * (1 - s);
+}
+
+/// Reference data of one local edge of an element.
+struct DgEdgeRef {
+  double omega[num_edge_points];         ///< omega_g = w_g |dX/ds|: reference arc-length weights (math.md §1.4)
+  double nu_cov[num_edge_points][2];     ///< nu_{E,alpha}(g) = nu_E . G_alpha, nu_E the outward reference co-normal
+  double s_nbr[num_edge_points];         ///< edge parameter of the matched point in the neighbour (s or 1 - s)
+  double Wu[num_edge_points][2][3];      ///< position lifting weights W^u_{g,alpha} = 1/2 omega nu_alpha Mpsi^-1 psi
+  double Wt[num_edge_points][2];         ///< director lifting weights W^t_{g,alpha} = 1/2 omega nu_alpha / |E|
+};
+
+/// Reference data of one element (math.md §5.3).
+struct DgElementRef {
+  double wj0[num_area_points];           ///< w_q j0_q
+  double Jinv[num_area_points][2][2];    ///< (J^-1)_{alpha i}
+  double dN[num_area_points][6][2];      ///< P2 shape derivatives dN^A/dxi^alpha
+  double L[num_area_points][3];          ///< P1 shape values (also the P1 lifting basis psi_u)
+  double dL[3][2];                       ///< P1 shape derivatives (constant)
+  ShellReference ref[num_area_points];   ///< reference strain offsets gam0, rho0
+  DgEdgeRef edge[3];
+  double area;                           ///< |E| = sum_q w_q j0_q
+};
+
+namespace detail {
+/// Inverse of a symmetric positive definite 3x3 matrix (the P1 lifting mass matrix).
+KOKKOS_INLINE_FUNCTION void inverse33(const double A[3][3], double B[3][3]) {
+  const double det = det33(A);
+  B[0][0] = (A[1][1] * A[2][2] - A[1][2] * A[2][1]) / det;
+  B[0][1] = (A[0][2] * A[2][1] - A[0][1] * A[2][2]) / det;
+  B[0][2] = (A[0][1] * A[1][2] - A[0][2] * A[1][1]) / det;
+  B[1][0] = (A[1][2] * A[2][0] - A[1][0] * A[2][2]) / det;
+  B[1][1] = (A[0][0] * A[2][2] - A[0][2] * A[2][0]) / det;
+  B[1][2] = (A[0][2] * A[1][0] - A[0][0] * A[1][2]) / det;
+  B[2][0] = (A[1][0] * A[2][1] - A[1][1] * A[2][0]) / det;
+  B[2][1] = (A[0][1] * A[2][0] - A[0][0] * A[2][1]) / det;
+  B[2][2] = (A[0][0] * A[1][1] - A[0][1] * A[1][0]) / det;
+}
+}  // namespace detail
+
+/// Builds the reference data of an element from its reference node positions X (6 P2 nodes) and the
+/// reference directors T0 at its 3 vertices (math.md §1.5: equal in every element sharing a vertex).
+/// nbr_same_direction[k]: the neighbour across edge k traverses the edge in the same direction (false for
+/// consistently oriented neighbours; irrelevant for edges without a neighbour).
+KOKKOS_INLINE_FUNCTION void build_dg_element_ref(const double X[6][3], const double T0[3][3],
+                                                 const bool nbr_same_direction[3], DgElementRef& R) {
+  double L[3], dL[3][2];
+  p1_shape(0, 0, L, dL);
+  for (int a = 0; a < 3; ++a) R.dL[a][0] = dL[a][0], R.dL[a][1] = dL[a][1];
+  // Area points: geometry, shape data, reference kinematics -> strain offsets; lifting mass matrix.
+  double Mpsi[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  R.area = 0;
+  for (int q = 0; q < num_area_points; ++q) {
+    const double xi1 = tri6_rule.xi[q][0], xi2 = tri6_rule.xi[q][1];
+    AreaPointGeometry geo;
+    area_point_geometry(X, xi1, xi2, tri6_rule.w[q], geo);
+    R.wj0[q] = geo.wj0;
+    R.area += geo.wj0;
+    for (int al = 0; al < 2; ++al)
+      for (int i = 0; i < 2; ++i) R.Jinv[q][al][i] = geo.Jinv[al][i];
+    double N[6], dN[6][2];
+    p2_shape(xi1, xi2, N, dN);
+    for (int A = 0; A < 6; ++A) R.dN[q][A][0] = dN[A][0], R.dN[q][A][1] = dN[A][1];
+    p1_shape(xi1, xi2, L, dL);
+    for (int a = 0; a < 3; ++a) R.L[q][a] = L[a];
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) Mpsi[a][b] += geo.wj0 * L[a] * L[b];
+    // Reference kinematics: phi_0 and t_0 are continuous, so their DG derivatives are the ordinary ones.
+    ShellKinematics k0;
+    for (int c = 0; c < 3; ++c) {
+      double ga[2] = {0, 0}, gd[2] = {0, 0};
+      for (int A = 0; A < 6; ++A) ga[0] += X[A][c] * dN[A][0], ga[1] += X[A][c] * dN[A][1];
+      for (int a = 0; a < 3; ++a) gd[0] += T0[a][c] * dL[a][0], gd[1] += T0[a][c] * dL[a][1];
+      for (int i = 0; i < 2; ++i) {
+        k0.a[i][c] = ga[0] * geo.Jinv[0][i] + ga[1] * geo.Jinv[1][i];
+        k0.d[i][c] = gd[0] * geo.Jinv[0][i] + gd[1] * geo.Jinv[1][i];
+      }
+      k0.t[c] = L[0] * T0[0][c] + L[1] * T0[1][c] + L[2] * T0[2][c];
+    }
+    R.ref[q] = make_shell_reference(k0);
+  }
+  double Minv[3][3];
+  detail::inverse33(Mpsi, Minv);
+  // Edges: arc-length weights, outward co-normals and lifting weights (math.md §1.4, §5.2).
+  for (int k = 0; k < 3; ++k) {
+    const int vi = edge_node(k, 0), vj = edge_node(k, 1);
+    DgEdgeRef& E = R.edge[k];
+    for (int g = 0; g < num_edge_points; ++g) {
+      const double s = edge3_rule.s[g];
+      const double xi1 = (1 - s) * p2_node_xi[vi][0] + s * p2_node_xi[vj][0];
+      const double xi2 = (1 - s) * p2_node_xi[vi][1] + s * p2_node_xi[vj][1];
+      const double dxi[2] = {p2_node_xi[vj][0] - p2_node_xi[vi][0], p2_node_xi[vj][1] - p2_node_xi[vi][1]};
+      double G[2][3];
+      covariant_tangents(X, xi1, xi2, G);
+      double tau[3], n0[3], nu[3];
+      for (int c = 0; c < 3; ++c) tau[c] = G[0][c] * dxi[0] + G[1][c] * dxi[1];  // dX/ds
+      E.omega[g] = edge3_rule.w[g] * norm3(tau);
+      normalize3(tau);
+      cross3(G[0], G[1], n0);
+      normalize3(n0);
+      cross3(tau, n0, nu);  // outward for a counter-clockwise element (math.md §1.4 check)
+      E.nu_cov[g][0] = dot3(nu, G[0]);
+      E.nu_cov[g][1] = dot3(nu, G[1]);
+      E.s_nbr[g] = nbr_same_direction[k] ? s : 1 - s;
+      p1_shape(xi1, xi2, L, dL);
+      for (int al = 0; al < 2; ++al) {
+        const double c = 0.5 * E.omega[g] * E.nu_cov[g][al];
+        for (int b = 0; b < 3; ++b)
+          E.Wu[g][al][b] = c * (Minv[b][0] * L[0] + Minv[b][1] * L[1] + Minv[b][2] * L[2]);
+      }
+    }
+  }
+  for (int k = 0; k < 3; ++k)
+    for (int g = 0; g < num_edge_points; ++g)
+      for (int al = 0; al < 2; ++al) R.edge[k].Wt[g][al] = 0.5 * R.edge[k].omega[g] * R.edge[k].nu_cov[g][al] / R.area;
+}
+
+/// Internal forces of one element (math.md §5.4) with the point law `law(eps, gam, rho, N, Q, M)` returning
+/// the stored energy per unit reference area.
+///   x[6][3], t[3][3]: the element's current node positions and vertex directors.
+///   lift[k]: edge k is an intact interface with a single neighbour (its jump is lifted).
+///   xn[k][j][3], tn[k][j][3]: the neighbour's edge nodes across edge k, in the neighbour's edge-local order.
+/// Outputs (overwritten): f[6][3] and g[3][3] on the element's own nodes; fn[k][j][3], gn[k][j][3] on the
+/// neighbour's edge nodes (neighbour's edge-local order), zero where lift[k] is false.
+/// Returns the element's strain energy sum_q w_q j0_q W.
+template <class Law>
+KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const double x[6][3], const double t[3][3],
+                                                const bool lift[3], const double xn[3][3][3], const double tn[3][2][3],
+                                                const Law& law, double f[6][3], double g[3][3], double fn[3][3][3],
+                                                double gn[3][2][3]) {
+  // 1. Liftings of the one-sided jumps [u]^E = u^E - u^E' (math.md §5.2).
+  double Rx[3][2][3][3] = {};  // [k][alpha][component][psi]
+  double Rt[3][2][3] = {};     // [k][alpha][component]
+  for (int k = 0; k < 3; ++k) {
+    if (!lift[k]) continue;
+    const DgEdgeRef& E = R.edge[k];
+    for (int gp = 0; gp < num_edge_points; ++gp) {
+      const double s = edge3_rule.s[gp], sn = E.s_nbr[gp];
+      double no[3], nn[3];
+      edge_shape_p2(s, no);
+      edge_shape_p2(sn, nn);
+      const double lo[2] = {1 - s, s}, ln[2] = {1 - sn, sn};
+      for (int c = 0; c < 3; ++c) {
+        double jx = 0, jt = 0;
+        for (int j = 0; j < 3; ++j) jx += no[j] * x[edge_node(k, j)][c] - nn[j] * xn[k][j][c];
+        for (int j = 0; j < 2; ++j) jt += lo[j] * t[edge_node(k, j)][c] - ln[j] * tn[k][j][c];
+        for (int al = 0; al < 2; ++al) {
+          for (int b = 0; b < 3; ++b) Rx[k][al][c][b] += jx * E.Wu[gp][al][b];
+          Rt[k][al][c] += jt * E.Wt[gp][al];
+        }
+      }
+    }
+  }
+  // 2. Area points: DG derivatives, strains, resultants, own forces; accumulate the projections Pi.
+  for (int A = 0; A < 6; ++A) f[A][0] = f[A][1] = f[A][2] = 0;
+  for (int a = 0; a < 3; ++a) g[a][0] = g[a][1] = g[a][2] = 0;
+  double Pix[2][3][3] = {};  // [alpha][component][psi]: sum_q w j0 n^alpha (x) psi
+  double Pit[2][3] = {};     // [alpha][component]:      sum_q w j0 m^alpha
+  double energy = 0;
+  for (int q = 0; q < num_area_points; ++q) {
+    ShellKinematics kin;
+    for (int c = 0; c < 3; ++c) {
+      double aa[2], dd[2];
+      for (int al = 0; al < 2; ++al) {
+        aa[al] = 0, dd[al] = 0;
+        for (int A = 0; A < 6; ++A) aa[al] += x[A][c] * R.dN[q][A][al];
+        for (int a = 0; a < 3; ++a) dd[al] += t[a][c] * R.dL[a][al];
+        for (int k = 0; k < 3; ++k) {
+          if (!lift[k]) continue;
+          for (int b = 0; b < 3; ++b) aa[al] -= Rx[k][al][c][b] * R.L[q][b];
+          dd[al] -= Rt[k][al][c];
+        }
+      }
+      for (int i = 0; i < 2; ++i) {
+        kin.a[i][c] = aa[0] * R.Jinv[q][0][i] + aa[1] * R.Jinv[q][1][i];
+        kin.d[i][c] = dd[0] * R.Jinv[q][0][i] + dd[1] * R.Jinv[q][1][i];
+      }
+      kin.t[c] = R.L[q][0] * t[0][c] + R.L[q][1] * t[1][c] + R.L[q][2] * t[2][c];
+    }
+    double eps[3], gam[2], rho[3], N[3], Q[2], M[3];
+    compute_strains(kin, R.ref[q], eps, gam, rho);
+    energy += R.wj0[q] * law(eps, gam, rho, N, Q, M);
+    double n[2][3], m[2][3], l[3];
+    stress_power_vectors(kin, N, Q, M, n, m, l);
+    const double w = R.wj0[q];
+    for (int al = 0; al < 2; ++al)
+      for (int c = 0; c < 3; ++c) {
+        // parametric components n^alpha = (J^-1)_{alpha i} n^i
+        const double na = R.Jinv[q][al][0] * n[0][c] + R.Jinv[q][al][1] * n[1][c];
+        const double ma = R.Jinv[q][al][0] * m[0][c] + R.Jinv[q][al][1] * m[1][c];
+        for (int A = 0; A < 6; ++A) f[A][c] += w * R.dN[q][A][al] * na;
+        for (int a = 0; a < 3; ++a) g[a][c] += w * R.dL[a][al] * ma;
+        for (int b = 0; b < 3; ++b) Pix[al][c][b] += w * na * R.L[q][b];
+        Pit[al][c] += w * ma;
+      }
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) g[a][c] += w * R.L[q][a] * l[c];
+  }
+  // 3. Lifting fluxes F_g, H_g on own and neighbour edge nodes (math.md §5.4).
+  for (int k = 0; k < 3; ++k) {
+    for (int j = 0; j < 3; ++j) fn[k][j][0] = fn[k][j][1] = fn[k][j][2] = 0;
+    for (int j = 0; j < 2; ++j) gn[k][j][0] = gn[k][j][1] = gn[k][j][2] = 0;
+    if (!lift[k]) continue;
+    const DgEdgeRef& E = R.edge[k];
+    for (int gp = 0; gp < num_edge_points; ++gp) {
+      const double s = edge3_rule.s[gp], sn = E.s_nbr[gp];
+      double no[3], nn[3];
+      edge_shape_p2(s, no);
+      edge_shape_p2(sn, nn);
+      const double lo[2] = {1 - s, s}, ln[2] = {1 - sn, sn};
+      for (int c = 0; c < 3; ++c) {
+        double F = 0, H = 0;
+        for (int al = 0; al < 2; ++al) {
+          for (int b = 0; b < 3; ++b) F += Pix[al][c][b] * E.Wu[gp][al][b];
+          H += Pit[al][c] * E.Wt[gp][al];
+        }
+        for (int j = 0; j < 3; ++j) {
+          f[edge_node(k, j)][c] -= no[j] * F;
+          fn[k][j][c] += nn[j] * F;
+        }
+        for (int j = 0; j < 2; ++j) {
+          g[edge_node(k, j)][c] -= lo[j] * H;
+          gn[k][j][c] += ln[j] * H;
+        }
+      }
+    }
+  }
+  return energy;
+}
+
+/// Reference data of an interface (the minus side's edge geometry; both sides share the reference edge).
+struct DgInterfaceRef {
+  double omega[num_edge_points];  ///< arc-length weights of the minus side's edge points
+  double s_plus[num_edge_points]; ///< plus side's edge parameter of the matched points
+  double inv_he;                  ///< 1 / h_e, h_e = sum_g omega_g (reference arc length)
+};
+
+/// Interface reference data from the minus element's edge reference data.
+KOKKOS_INLINE_FUNCTION void build_dg_interface_ref(const DgEdgeRef& minus_edge, DgInterfaceRef& I) {
+  double he = 0;
+  for (int g = 0; g < num_edge_points; ++g) {
+    I.omega[g] = minus_edge.omega[g];
+    I.s_plus[g] = minus_edge.s_nbr[g];
+    he += I.omega[g];
+  }
+  I.inv_he = 1.0 / he;
+}
+
+/// Stabilization (penalty) forces of an intact interface (math.md §5.5; SEED eqs. 42-44, 52):
+/// [[phi]] = phi^- - phi^+, n_stab = beta_x/h_e [[phi]], m_stab = beta_T/h_e [[t]]. Inputs are the edge
+/// nodes of each side in its own edge-local order. Outputs (overwritten) are forces on those nodes.
+/// Returns the stabilization energy U_stab.
+KOKKOS_INLINE_FUNCTION double dg_penalty_forces(const DgInterfaceRef& I, double beta_x, double beta_t,
+                                                const double xm[3][3], const double tm[2][3], const double xp[3][3],
+                                                const double tp[2][3], double fm[3][3], double gm[2][3],
+                                                double fp[3][3], double gp[2][3]) {
+  for (int j = 0; j < 3; ++j) fm[j][0] = fm[j][1] = fm[j][2] = fp[j][0] = fp[j][1] = fp[j][2] = 0;
+  for (int j = 0; j < 2; ++j) gm[j][0] = gm[j][1] = gm[j][2] = gp[j][0] = gp[j][1] = gp[j][2] = 0;
+  double energy = 0;
+  for (int g = 0; g < num_edge_points; ++g) {
+    const double s = edge3_rule.s[g], sp = I.s_plus[g];
+    double nm[3], np[3];
+    edge_shape_p2(s, nm);
+    edge_shape_p2(sp, np);
+    const double lm[2] = {1 - s, s}, lp[2] = {1 - sp, sp};
+    double jx[3], jt[3];
+    for (int c = 0; c < 3; ++c) {
+      jx[c] = 0, jt[c] = 0;
+      for (int j = 0; j < 3; ++j) jx[c] += nm[j] * xm[j][c] - np[j] * xp[j][c];
+      for (int j = 0; j < 2; ++j) jt[c] += lm[j] * tm[j][c] - lp[j] * tp[j][c];
+    }
+    const double cx = I.omega[g] * beta_x * I.inv_he, ct = I.omega[g] * beta_t * I.inv_he;
+    energy += 0.5 * (cx * dot3(jx, jx) + ct * dot3(jt, jt));
+    for (int c = 0; c < 3; ++c) {
+      for (int j = 0; j < 3; ++j) fm[j][c] += cx * jx[c] * nm[j], fp[j][c] -= cx * jx[c] * np[j];
+      for (int j = 0; j < 2; ++j) gm[j][c] += ct * jt[c] * lm[j], gp[j][c] -= ct * jt[c] * lp[j];
+    }
+  }
+  return energy;
+}
+
+}  // namespace shellfrac::disc

@@ -1,0 +1,285 @@
+// The DG shell operator (math.md §5) assembled serially over small meshes. References:
+//  * rigid motions x = R X + b, t = R t0 produce zero strain energy and zero forces (objectivity, §11.4);
+//  * the assembled forces are the exact gradient of the total discrete energy Pi_h (§5.6): checked by
+//    central finite differences on a state with discontinuous (DG) perturbations, so that liftings and
+//    penalties are all active;
+//  * membrane patch test: a uniform stretch of a distorted flat mesh gives a uniform membrane state, so the
+//    DG copies of every interior mesh node are in equilibrium and Pi_h = 1/2 N:eps |S|.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "shellfrac/disc/dg_element.hpp"
+#include "shellfrac/materials/elastic_resultant.hpp"
+#include "shellfrac/mesh/edge_topology.hpp"
+#include "shellfrac/mesh/generators.hpp"
+#include "shellfrac/mesh/serial_mesh.hpp"
+
+using namespace shellfrac;
+using namespace shellfrac::disc;
+
+namespace {
+
+/// A serial DG model: every element owns copies of its nodes.
+struct Model {
+  mesh::SerialMesh mesh;
+  mesh::EdgeTopology topo;
+  std::vector<DgElementRef> refs;
+  std::vector<DgInterfaceRef> iref;
+  std::vector<std::array<bool, 3>> lift;
+  materials::ElasticSection section;
+  double beta_x = 0, beta_t = 0;
+  // state: positions [E][A][c], directors [E][a][c]
+  std::vector<double> x, t;
+  std::vector<double> X, T0;
+
+  explicit Model(mesh::SerialMesh m, double E = 1.0e3, double nu = 0.3, double h = 0.05, double c = 3.0)
+      : mesh(std::move(m)), topo(mesh::build_edge_topology(mesh)) {
+    section = materials::make_elastic_section(E, nu, h);
+    beta_x = c * E * h;
+    beta_t = c * E * h * h * h / 12;
+    const auto n0 = mesh::reference_vertex_normals(mesh);
+    const auto ne = mesh.num_elements();
+    X.resize(ne * 18), T0.resize(ne * 9);
+    refs.resize(ne), lift.resize(ne);
+    for (GlobalId e = 0; e < ne; ++e) {
+      double Xe[6][3], Te[3][3];
+      for (int A = 0; A < 6; ++A)
+        for (int c = 0; c < 3; ++c) Xe[A][c] = X[e * 18 + A * 3 + c] = mesh.coords[mesh.node(e, A)][c];
+      for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) Te[a][c] = T0[e * 9 + a * 3 + c] = n0[mesh.node(e, a)][c];
+      bool same[3];
+      for (int k = 0; k < 3; ++k) {
+        const GlobalId f = topo.element_interface[e][k];
+        same[k] = f >= 0 && topo.interfaces[f].same_orientation;
+        lift[e][k] = f >= 0 && !topo.interfaces[f].non_manifold;
+      }
+      build_dg_element_ref(Xe, Te, same, refs[e]);
+    }
+    for (const auto& f : topo.interfaces) {
+      DgInterfaceRef r;
+      build_dg_interface_ref(refs[f.minus.element].edge[f.minus.local_edge], r);
+      iref.push_back(r);
+    }
+    x = X, t = T0;
+  }
+
+  /// Total energy and forces F (positions), G (spatial director moments), assembled by gather.
+  double energy_and_forces(std::vector<double>& F, std::vector<double>& G) const {
+    const auto ne = mesh.num_elements();
+    F.assign(ne * 18, 0), G.assign(ne * 9, 0);
+    auto law = [&](const double eps[3], const double gam[2], const double rho[3], double N[3], double Q[2],
+                   double M[3]) {
+      materials::elastic_resultants(section, eps, gam, rho, N, Q, M);
+      return materials::elastic_energy(section, eps, gam, rho);
+    };
+    std::vector<double> fn(ne * 27), gn(ne * 18);
+    double total = 0;
+    for (GlobalId e = 0; e < ne; ++e) {
+      double xe[6][3], te[3][3], xn[3][3][3] = {}, tn[3][2][3] = {}, f[6][3], g[3][3], fk[3][3][3], gk[3][2][3];
+      load(e, xe, te);
+      bool lf[3];
+      for (int k = 0; k < 3; ++k) {
+        lf[k] = lift[e][k];
+        if (!lf[k]) continue;
+        const auto nb = topo.neighbor[e][k];
+        double xo[6][3], to[3][3];
+        load(nb.element, xo, to);
+        for (int j = 0; j < 3; ++j)
+          for (int c = 0; c < 3; ++c) xn[k][j][c] = xo[edge_node(nb.local_edge, j)][c];
+        for (int j = 0; j < 2; ++j)
+          for (int c = 0; c < 3; ++c) tn[k][j][c] = to[edge_node(nb.local_edge, j)][c];
+      }
+      total += dg_element_forces(refs[e], xe, te, lf, xn, tn, law, f, g, fk, gk);
+      for (int A = 0; A < 6; ++A)
+        for (int c = 0; c < 3; ++c) F[e * 18 + A * 3 + c] += f[A][c];
+      for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) G[e * 9 + a * 3 + c] += g[a][c];
+      for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 3; ++j)
+          for (int c = 0; c < 3; ++c) {
+            fn[e * 27 + k * 9 + j * 3 + c] = fk[k][j][c];
+            if (j < 2) gn[e * 18 + k * 6 + j * 3 + c] = gk[k][j][c];
+          }
+    }
+    // gather the neighbours' lifting fluxes: element e, edge k receives what its neighbour wrote for it
+    for (GlobalId e = 0; e < ne; ++e)
+      for (int k = 0; k < 3; ++k) {
+        if (!lift[e][k]) continue;
+        const auto nb = topo.neighbor[e][k];
+        for (int j = 0; j < 3; ++j)
+          for (int c = 0; c < 3; ++c) {
+            F[e * 18 + edge_node(k, j) * 3 + c] += fn[nb.element * 27 + nb.local_edge * 9 + j * 3 + c];
+            if (j < 2) G[e * 9 + edge_node(k, j) * 3 + c] += gn[nb.element * 18 + nb.local_edge * 6 + j * 3 + c];
+          }
+      }
+    for (std::size_t i = 0; i < topo.interfaces.size(); ++i) {
+      const auto& f = topo.interfaces[i];
+      double xa[6][3], ta[3][3], xb[6][3], tb[3][3], xm[3][3], tm[2][3], xp[3][3], tp[2][3];
+      double fm[3][3], gm[2][3], fp[3][3], gp[2][3];
+      load(f.minus.element, xa, ta);
+      load(f.plus.element, xb, tb);
+      for (int j = 0; j < 3; ++j)
+        for (int c = 0; c < 3; ++c) {
+          xm[j][c] = xa[edge_node(f.minus.local_edge, j)][c];
+          xp[j][c] = xb[edge_node(f.plus.local_edge, j)][c];
+          if (j < 2) tm[j][c] = ta[edge_node(f.minus.local_edge, j)][c], tp[j][c] = tb[edge_node(f.plus.local_edge, j)][c];
+        }
+      total += dg_penalty_forces(iref[i], beta_x, beta_t, xm, tm, xp, tp, fm, gm, fp, gp);
+      for (int j = 0; j < 3; ++j)
+        for (int c = 0; c < 3; ++c) {
+          F[f.minus.element * 18 + edge_node(f.minus.local_edge, j) * 3 + c] += fm[j][c];
+          F[f.plus.element * 18 + edge_node(f.plus.local_edge, j) * 3 + c] += fp[j][c];
+          if (j < 2) {
+            G[f.minus.element * 9 + edge_node(f.minus.local_edge, j) * 3 + c] += gm[j][c];
+            G[f.plus.element * 9 + edge_node(f.plus.local_edge, j) * 3 + c] += gp[j][c];
+          }
+        }
+    }
+    return total;
+  }
+
+  double energy() const {
+    std::vector<double> F, G;
+    return energy_and_forces(F, G);
+  }
+
+ private:
+  void load(GlobalId e, double xe[6][3], double te[3][3]) const {
+    for (int A = 0; A < 6; ++A)
+      for (int c = 0; c < 3; ++c) xe[A][c] = x[e * 18 + A * 3 + c];
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) te[a][c] = t[e * 9 + a * 3 + c];
+  }
+};
+
+mesh::SerialMesh curved_mesh() {
+  auto m = mesh::make_cylindrical_panel(1.0, 1.2, 1.0, 3, 2, mesh::DiagonalPattern::Alternating);
+  mesh::promote_to_p2(m);
+  return m;
+}
+
+/// Random rotation from a fixed-seed generator.
+void random_rotation(std::mt19937& rng, double R[3][3]) {
+  std::normal_distribution<double> n(0, 1);
+  double q[4] = {n(rng), n(rng), n(rng), n(rng)};
+  const double s = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  for (double& v : q) v /= s;
+  const double w = q[0], a = q[1], b = q[2], c = q[3];
+  const double M[3][3] = {{1 - 2 * (b * b + c * c), 2 * (a * b - c * w), 2 * (a * c + b * w)},
+                          {2 * (a * b + c * w), 1 - 2 * (a * a + c * c), 2 * (b * c - a * w)},
+                          {2 * (a * c - b * w), 2 * (b * c + a * w), 1 - 2 * (a * a + b * b)}};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) R[i][j] = M[i][j];
+}
+
+double max_abs(const std::vector<double>& v) {
+  double m = 0;
+  for (double a : v) m = std::max(m, std::abs(a));
+  return m;
+}
+
+}  // namespace
+
+TEST(DgOperator, ReferenceStateIsStressFree) {
+  Model model(curved_mesh());
+  std::vector<double> F, G;
+  EXPECT_NEAR(model.energy_and_forces(F, G), 0.0, 1e-18);
+  EXPECT_LT(max_abs(F), 1e-11 * model.beta_x);
+  EXPECT_LT(max_abs(G), 1e-11 * model.beta_x);
+}
+
+TEST(DgOperator, RigidMotionGivesZeroForces) {
+  Model model(curved_mesh());
+  std::mt19937 rng(7);
+  double R[3][3];
+  random_rotation(rng, R);
+  const double b[3] = {0.3, -1.2, 2.0};
+  for (std::size_t i = 0; i < model.X.size() / 3; ++i)
+    for (int r = 0; r < 3; ++r)
+      model.x[3 * i + r] = b[r] + R[r][0] * model.X[3 * i] + R[r][1] * model.X[3 * i + 1] + R[r][2] * model.X[3 * i + 2];
+  for (std::size_t i = 0; i < model.T0.size() / 3; ++i)
+    for (int r = 0; r < 3; ++r)
+      model.t[3 * i + r] = R[r][0] * model.T0[3 * i] + R[r][1] * model.T0[3 * i + 1] + R[r][2] * model.T0[3 * i + 2];
+  std::vector<double> F, G;
+  // Scale: a unit strain would give energies ~ E h |S| = 50 and forces ~ beta_x = 150.
+  EXPECT_LT(std::abs(model.energy_and_forces(F, G)), 1e-20 * 50 + 1e-22);
+  EXPECT_LT(max_abs(F), 1e-11 * model.beta_x);
+  EXPECT_LT(max_abs(G), 1e-11 * model.beta_x);
+}
+
+TEST(DgOperator, ForcesAreTheExactGradientOfTheDiscreteEnergy) {
+  Model model(curved_mesh());
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  // A discontinuous state: every DG copy moved independently, directors perturbed off the sphere.
+  for (double& v : model.x) v += 0.02 * u(rng);
+  for (double& v : model.t) v += 0.05 * u(rng);
+  std::vector<double> F, G;
+  model.energy_and_forces(F, G);
+  const double scale = std::max(max_abs(F), max_abs(G));
+  ASSERT_GT(scale, 0.0);
+  std::uniform_int_distribution<std::size_t> pick_x(0, model.x.size() - 1), pick_t(0, model.t.size() - 1);
+  const double h = 1e-6;
+  for (int trial = 0; trial < 60; ++trial) {
+    const bool director = trial % 3 == 2;
+    auto& v = director ? model.t : model.x;
+    const std::size_t i = director ? pick_t(rng) : pick_x(rng);
+    const double v0 = v[i];
+    v[i] = v0 + h;
+    const double ep = model.energy();
+    v[i] = v0 - h;
+    const double em = model.energy();
+    v[i] = v0;
+    const double fd = (ep - em) / (2 * h);
+    const double an = director ? G[i] : F[i];
+    EXPECT_NEAR(an, fd, 1e-6 * scale) << (director ? "director" : "position") << " dof " << i;
+  }
+}
+
+TEST(DgOperator, MembranePatchTestOnDistortedMesh) {
+  // Flat unstructured patch: move interior vertices of a structured mesh (straight edges, affine elements).
+  auto m = mesh::make_rectangle(2.0, 1.0, 4, 3, mesh::DiagonalPattern::Alternating);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.12, 0.12);
+  for (auto& p : m.coords)
+    if (p[0] > 1e-12 && p[0] < 2 - 1e-12 && p[1] > 1e-12 && p[1] < 1 - 1e-12) p[0] += u(rng), p[1] += u(rng);
+  mesh::promote_to_p2(m);
+  const double E = 1.0e3, nu = 0.3, h = 0.05;
+  Model model(m, E, nu, h);
+  // x = F X with F = [[1+s, g, 0], [0, 1+r, 0], [0, 0, 1]], t = e3: uniform membrane strain.
+  const double s = 1e-3, r = -4e-4, gsh = 2e-4;
+  for (std::size_t i = 0; i < model.X.size() / 3; ++i) {
+    const double X0 = model.X[3 * i], X1 = model.X[3 * i + 1];
+    model.x[3 * i] = (1 + s) * X0 + gsh * X1;
+    model.x[3 * i + 1] = (1 + r) * X1;
+  }
+  std::vector<double> F, G;
+  const double energy = model.energy_and_forces(F, G);
+  // Exact Green-Lagrange strain of the uniform deformation and its membrane energy.
+  const double e11 = 0.5 * ((1 + s) * (1 + s) - 1), e22 = 0.5 * ((1 + r) * (1 + r) + gsh * gsh - 1);
+  const double e12 = 0.5 * (1 + s) * gsh;
+  const double Dn = E * h / (1 - nu * nu);
+  const double N11 = Dn * (e11 + nu * e22), N22 = Dn * (e22 + nu * e11), N12 = Dn * (1 - nu) / 2 * 2 * e12;
+  EXPECT_NEAR(energy, 0.5 * (N11 * e11 + N22 * e22 + N12 * 2 * e12) * 2.0, 1e-10 * std::abs(energy));
+  // Equilibrium of interior mesh nodes: the forces on all DG copies of a node sum to zero.
+  std::vector<double> node_force(m.num_nodes() * 3, 0.0);
+  for (GlobalId e = 0; e < m.num_elements(); ++e)
+    for (int A = 0; A < 6; ++A)
+      for (int c = 0; c < 3; ++c) node_force[m.node(e, A) * 3 + c] += F[e * 18 + A * 3 + c];
+  const double fscale = std::abs(N11) * 0.5;  // a boundary node carries ~ N x edge length
+  for (GlobalId n = 0; n < m.num_nodes(); ++n) {
+    const auto& p = m.coords[n];
+    const bool interior = p[0] > 1e-12 && p[0] < 2 - 1e-12 && p[1] > 1e-12 && p[1] < 1 - 1e-12;
+    if (!interior) continue;
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(node_force[n * 3 + c], 0.0, 1e-9 * fscale) << "node " << n;
+  }
+  // Total x-reaction on the x = 2 edge: the force per unit reference length is n^1 = N^{1j} a_j (math.md
+  // §3.2) with a_1 = F e1, a_2 = F e2; its x-component times the width 1.
+  double rx = 0;
+  for (GlobalId n = 0; n < m.num_nodes(); ++n)
+    if (m.coords[n][0] > 2 - 1e-12) rx += node_force[n * 3];
+  EXPECT_NEAR(rx, (N11 * (1 + s) + N12 * gsh) * 1.0, 1e-9 * std::abs(N11));
+}
