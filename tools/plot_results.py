@@ -102,14 +102,22 @@ def main():
     fig.colorbar(pc, ax=ax, label=a.field, shrink=0.7)
     ax.set_title("%s: %d elements, %d file(s)" % (os.path.basename(a.results), len(tris), len(files)))
     if with_history:
-        hx = fig.add_subplot(1, 2, 2)
         t = [float(r["time"]) for r in rows]
-        for col in ("kinetic_energy", "strain_energy", "penalty_energy", "external_work"):
+        probes = [c for c in rows[0] if c.endswith("_displ_z")]
+        hx = fig.add_subplot(2 if probes else 1, 2, 2)
+        for col in ("kinetic_energy", "strain_energy", "penalty_energy", "energy_balance_error"):
             if col in rows[0]:
                 hx.plot(t, [float(r[col]) for r in rows], label=col)
         hx.set_xlabel("time")
         hx.set_ylabel("energy")
-        hx.legend()
+        hx.legend(fontsize="small")
+        if probes:
+            px = fig.add_subplot(2, 2, 4)
+            for col in probes:
+                px.plot(t, [float(r[col]) for r in rows], label=col)
+            px.set_xlabel("time")
+            px.set_ylabel("mean displacement z")
+            px.legend(fontsize="small")
     out = a.output or os.path.splitext(a.results)[0] + ".png"
     fig.tight_layout()
     fig.savefig(out, dpi=120)

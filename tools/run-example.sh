@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$(pwd)
-DECK=$(realpath "${1:-xml/cantilever_200x40.xml}")
+DECK=$(realpath "${1:-xml/cantilever_plate_oscillation.xml}")
 NP=${2:-2}
 bash tools/install-deps.sh
 bash tools/build.sh

@@ -86,15 +86,21 @@ int run(int argc, char** argv) {
               << s.interfaces << " interfaces, " << s.boundary_edges << " boundary, " << s.non_manifold_edges
               << " non-manifold)\n"
               << "  partition: " << s.min_owned << ".." << s.max_owned << " elements and " << s.min_ghosts << ".."
-              << s.max_ghosts << " ghosts per rank\n";
+              << s.max_ghosts << " ghosts per rank\n"
+              << "  time step: " << s.dt << " (stable estimate " << s.stable_dt << ", math.md §8)\n";
   }
   if (check) {
     if (root) std::cout << "  deck and mesh are valid (--check: nothing written)\n";
     return 0;
   }
   const auto out = sim.run();
-  if (root)
+  if (root) {
+    if (out.steps > 0)
+      std::cout << "  " << out.steps << " steps in " << out.wall_seconds << " s ("
+                << 1e6 * out.wall_seconds / (double(out.steps) * double(out.elements)) << " us per element-step on "
+                << shellfrac::parallel::size() << " rank(s))\n";
     for (const auto& f : out.files) std::cout << "  wrote " << f << "\n";
+  }
   return 0;
 }
 

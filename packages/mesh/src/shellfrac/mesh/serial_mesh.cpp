@@ -217,11 +217,11 @@ SerialMesh unpack(const std::vector<char>& buffer) {
   return m;
 }
 
-void broadcast(SerialMesh& mesh, int root) {
+void broadcast(SerialMesh& mesh, int root, MPI_Comm comm) {
   std::vector<char> buf;
-  if (parallel::rank() == root) buf = pack(mesh);
-  parallel::broadcast(buf, root);
-  if (parallel::rank() != root) mesh = unpack(buf);
+  if (parallel::rank(comm) == root) buf = pack(mesh);
+  parallel::broadcast(buf, root, comm);
+  if (parallel::rank(comm) != root) mesh = unpack(buf);
 }
 
 void promote_to_p2(SerialMesh& mesh) {

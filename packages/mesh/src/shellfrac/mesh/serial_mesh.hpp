@@ -3,6 +3,8 @@
 /// The conforming input mesh, as read from a file or made by a generator, held whole on every rank before
 /// distribution. Nodes are shared between elements here; the DG duplication of nodes (math.md §1.1) is
 /// done when the mesh is distributed (distributed_mesh.hpp). All indices are 0-based.
+#include <mpi.h>
+
 #include <string>
 #include <vector>
 
@@ -78,8 +80,8 @@ void check_mesh(const SerialMesh& mesh);
 std::vector<char> pack(const SerialMesh& mesh);
 /// Inverse of pack().
 SerialMesh unpack(const std::vector<char>& buffer);
-/// Broadcasts the mesh from root to every rank. Collective.
-void broadcast(SerialMesh& mesh, int root = 0);
+/// Broadcasts the mesh from root to every rank of comm. Collective.
+void broadcast(SerialMesh& mesh, int root = 0, MPI_Comm comm = MPI_COMM_WORLD);
 
 /// Promotes a TRI3 mesh to TRI6: one new node per unique edge at its midpoint, projected on mesh.surface.
 /// Sets: side sets and element sets are unchanged; a new node joins a node set when both end vertices of

@@ -127,7 +127,7 @@ mesh::SerialMesh build_mesh(const MeshParams& p, MPI_Comm comm) {
         mesh::check_mesh(m);
       },
       0, comm);
-  mesh::broadcast(m, 0);
+  mesh::broadcast(m, 0, comm);
   return m;
 }
 

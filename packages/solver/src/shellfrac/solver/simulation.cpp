@@ -14,6 +14,8 @@
 #include "shellfrac/io/exodus_results.hpp"
 #include "shellfrac/io/history.hpp"
 #include "shellfrac/mesh/vec3_ops.hpp"
+#include "shellfrac/solver/shell_dynamics.hpp"
+#include <chrono>
 
 namespace shellfrac::solver {
 
@@ -64,6 +66,9 @@ Teuchos::RCP<const Teuchos::ParameterList> OutputParams::valid_parameters() {
   pl->set("Base Name", "", "Base name of the results: <Base Name>.exo (or the per-rank set <Base Name>.exo.<np>.<rank>) "
                            "and <Base Name>_history.csv; empty = the deck's file name without extension");
   pl->set("Directory", "", "Directory for the results (must exist); empty = the current directory");
+  pl->set("Probes", Teuchos::Array<std::string>(), "Node sets whose mean displacement and velocity (over all DG "
+                                                     "copies of their nodes) are history columns <set>_displ_x ... "
+                                                     "<set>_vel_z, e.g. {tip, centre}");
   return pl;
 }
 
@@ -76,6 +81,12 @@ Teuchos::RCP<const Teuchos::ParameterList> Deck::valid_parameters() {
   mats.set("steel", *materials::MaterialParams::valid_parameters());
   pl->set("Partitioning", *dist::PartitionParams::valid_parameters(), "Domain decomposition of the elements");
   pl->set("Output", *OutputParams::valid_parameters(), "Results files");
+  pl->set("Discretization", *DiscretizationParams::valid_parameters(), "DG stabilization constants");
+  pl->set("Time Integration", *TimeParams::valid_parameters(), "Explicit central differences");
+  auto& bcs = pl->sublist("Boundary Conditions", false, "One sublist per condition, named freely");
+  bcs.set("clamped end", *BoundaryCondition::valid_parameters());
+  auto& ics = pl->sublist("Initial Conditions", false, "One sublist per initial velocity, named freely");
+  ics.set("initial velocity", *InitialVelocity::valid_parameters());
   return pl;
 }
 
@@ -87,7 +98,9 @@ Deck Deck::read(const std::string& file, MPI_Comm comm) {
   const params::Context ctx{file, "shellfrac"};
   // Top level: only the known sublists; user-named children of Blocks/Materials are validated one by one.
   Teuchos::ParameterList top("shellfrac");
-  for (const char* name : {"Mesh", "Blocks", "Materials", "Partitioning", "Output"}) top.sublist(name);
+  for (const char* name : {"Mesh", "Blocks", "Materials", "Partitioning", "Output", "Discretization",
+                           "Time Integration", "Boundary Conditions", "Initial Conditions"})
+    top.sublist(name);
   params::validate(pl, top, ctx);
   for (const char* name : {"Blocks", "Materials"})
     SHELLFRAC_INPUT_REQUIRE(pl.isSublist(name) && pl.sublist(name).numParams() > 0,
@@ -117,11 +130,28 @@ Deck Deck::read(const std::string& file, MPI_Comm comm) {
   }
   d.partition = std::make_shared<dist::PartitionParams>(
       dist::PartitionParams::from_parameters(pl.sublist("Partitioning"), ctx / "Partitioning"));
+  d.discretization = DiscretizationParams::from_parameters(pl.sublist("Discretization"), ctx / "Discretization");
+  d.time = TimeParams::from_parameters(pl.sublist("Time Integration"), ctx / "Time Integration");
+  auto& bcs = pl.sublist("Boundary Conditions");
+  for (auto it = bcs.begin(); it != bcs.end(); ++it) {
+    SHELLFRAC_INPUT_REQUIRE(bcs.entry(it).isList(), file << ": 'Boundary Conditions->" << bcs.name(it)
+                                                         << "' must be a sublist (Type, Node Set)");
+    d.boundary_conditions.push_back(BoundaryCondition::from_parameters(
+        bcs.name(it), bcs.sublist(bcs.name(it)), ctx / "Boundary Conditions" / bcs.name(it)));
+  }
+  auto& ics = pl.sublist("Initial Conditions");
+  for (auto it = ics.begin(); it != ics.end(); ++it) {
+    SHELLFRAC_INPUT_REQUIRE(ics.entry(it).isList(), file << ": 'Initial Conditions->" << ics.name(it)
+                                                         << "' must be a sublist (Elements, Velocity)");
+    d.initial_velocities.push_back(InitialVelocity::from_parameters(
+        ics.name(it), ics.sublist(ics.name(it)), ctx / "Initial Conditions" / ics.name(it)));
+  }
   auto& out = pl.sublist("Output");
   params::validate(out, *OutputParams::valid_parameters(), ctx / "Output");
   d.output.base_name = out.get<std::string>("Base Name");
   if (d.output.base_name.empty()) d.output.base_name = stem_of(file);
   d.output.directory = out.get<std::string>("Directory");
+  for (const auto& p : out.get<Teuchos::Array<std::string>>("Probes")) d.output.probes.push_back(p);
   if (!d.output.directory.empty()) {
     struct stat st {};
     SHELLFRAC_INPUT_REQUIRE(stat(d.output.directory.c_str(), &st) == 0 && S_ISDIR(st.st_mode),
@@ -159,6 +189,33 @@ Simulation::Simulation(const std::string& deck_file, MPI_Comm comm) : comm_(comm
   const auto part = dist::partition_elements(m, topo, np, *deck_.partition, comm);
   dmesh_ = std::make_unique<dist::DistributedMesh>(m, topo, part, comm);
 
+  DynamicsSetup setup;
+  for (const auto& b : m.blocks) {
+    const auto& sec = deck_.blocks.at(b.name);
+    const auto& mat = deck_.materials.at(sec.material);
+    setup.block_sections.push_back({mat.youngs_modulus, mat.poissons_ratio, mat.density, sec.thickness});
+  }
+  setup.discretization = deck_.discretization;
+  setup.time = deck_.time;
+  setup.boundary_conditions = deck_.boundary_conditions;
+  setup.initial_velocities = deck_.initial_velocities;
+  setup.deck_file = deck_.file;
+  dynamics_ = std::make_unique<ShellDynamics>(m, *dmesh_, setup);
+  summary_.stable_dt = dynamics_->stable_time_step();
+  for (const auto& name : deck_.output.probes) {
+    const auto it = std::find_if(m.node_sets.begin(), m.node_sets.end(), [&](const auto& ns) { return ns.name == name; });
+    std::string names;
+    for (const auto& ns : m.node_sets) names += " '" + ns.name + "'";
+    SHELLFRAC_INPUT_REQUIRE(it != m.node_sets.end(), deck_.file << ": 'Output->Probes' names node set '" << name
+                                                                << "', which the mesh does not have; its node sets:"
+                                                                << names);
+    std::vector<char> member(m.num_nodes(), 0);
+    for (GlobalId n : it->nodes) member[n] = 1;
+    probe_names_.push_back(name);
+    probe_members_.push_back(std::move(member));
+  }
+  summary_.dt = dynamics_->time_step();
+
   summary_.elements = m.num_elements();
   summary_.nodes = m.num_nodes();
   summary_.edges = topo.num_edges();
@@ -193,34 +250,62 @@ RunSummary Simulation::run() {
   layout.nodal_vectors = {"displ", "velocity", "director"};
   layout.element_scalars = {"block", "rank"};
   layout.info = info_records(*deck_.expanded);
-  std::vector<std::vector<Vec3>> nodal(3);
   std::vector<std::vector<double>> element(2);
   for (LocalId le = 0; le < dm.num_owned(); ++le) {
     layout.element_gids.push_back(dm.element_gid(le));
     layout.element_block.push_back(dm.element_block(le));
     element[0].push_back(mesh_->blocks[dm.element_block(le)].id);
     element[1].push_back(dm.rank());
-    for (int a = 0; a < npe; ++a) {
-      layout.node_coords.push_back(dm.node_coords(le, a));
-      nodal[0].push_back({0, 0, 0});  // reference state: no displacement
-      nodal[1].push_back({0, 0, 0});  // at rest
-      // Directors are P1 (math.md §2): at a mid-side node t_h is the mean of its edge's vertex directors.
-      const Vec3 t = a < 3 ? dm.reference_director(le, a)
-                           : mesh::scale(0.5, mesh::add(dm.reference_director(le, edge_vertex[a - 3][0]),
-                                                        dm.reference_director(le, edge_vertex[a - 3][1])));
-      nodal[2].push_back(t);
-    }
+    for (int a = 0; a < npe; ++a) layout.node_coords.push_back(dm.node_coords(le, a));
   }
   // Results of an earlier run with another rank count would sit beside ours and confuse ParaView (which
   // opens a per-rank set from any of its files): remove <base>.exo and every <base>.exo.<n>.<r> first.
   parallel::on_root_then_agree([&] { remove_stale_results(exodus_path()); }, 0, comm_);
   io::ExodusResultsWriter exo(exodus_path(), layout, comm_);
-  exo.write_step(0.0, nodal, element);
-  io::HistoryWriter history(history_path(), {"step", "time", "dt", "kinetic_energy", "strain_energy", "penalty_energy",
-                                             "external_work", "energy_balance_error"},
-                            comm_);
-  // The reference state at rest: every energy is exactly zero.
-  history.write_row({0, 0, 0, 0, 0, 0, 0, 0});
+  std::vector<std::string> columns = {"step",          "time",          "dt",
+                                      "kinetic_energy", "strain_energy", "penalty_energy",
+                                      "external_work",  "energy_balance_error"};
+  for (const auto& p : probe_names_)
+    for (const char* q : {"_displ_x", "_displ_y", "_displ_z", "_vel_x", "_vel_y", "_vel_z"}) columns.push_back(p + q);
+  io::HistoryWriter history(history_path(), columns, comm_);
+  auto& dyn = *dynamics_;
+  std::vector<std::vector<Vec3>> nodal(3);
+  auto write_output = [&] {
+    dyn.nodal_fields(nodal[0], nodal[1], nodal[2]);
+    exo.write_step(dyn.time(), nodal, element);
+  };
+  const StepRecord r0 = dyn.record();
+  const double e0 = r0.kinetic + r0.strain + r0.penalty;
+  auto write_history = [&] {
+    const StepRecord r = dyn.record();
+    // No external loads yet and fixed supports do no work: the total energy is conserved, so the balance
+    // error is its drift (math.md §9.7, check 1).
+    const double err = r.kinetic + r.strain + r.penalty - e0;
+    std::vector<double> row = {double(r.step), r.time, r.dt, r.kinetic, r.strain, r.penalty, 0.0, err};
+    for (double p : dyn.probes(probe_members_)) row.push_back(p);
+    history.write_row(row);
+  };
+  write_output();
+  write_history();
+  const auto& tp = deck_.time;
+  const auto start = std::chrono::steady_clock::now();
+  double next_output = tp.output_interval > 0 ? tp.output_interval : tp.end_time;
+  bool last_written = true, last_recorded = true;
+  // Stop when the next step would overshoot the end time by more than half a step.
+  while (dyn.time() + 0.5 * dyn.time_step() < tp.end_time) {
+    dyn.step();
+    last_written = last_recorded = false;
+    if (dyn.step_count() % tp.history_interval == 0) write_history(), last_recorded = true;
+    if (dyn.time() >= next_output - 0.5 * dyn.time_step()) {
+      write_output();
+      last_written = true;
+      while (next_output <= dyn.time() + 0.5 * dyn.time_step()) next_output += tp.output_interval > 0 ? tp.output_interval : tp.end_time;
+    }
+  }
+  if (!last_recorded) write_history();
+  if (!last_written) write_output();
+  summary_.steps = dyn.step_count();
+  summary_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const int np = parallel::size(comm_);
   summary_.files = {np == 1 ? exodus_path() : io::rank_file_name(exodus_path(), np, 0) + " ... (" + std::to_string(np) + " files)",
                     history_path()};

@@ -12,6 +12,7 @@
 
 #include "shellfrac/core/parameters.hpp"
 #include "shellfrac/materials/material_params.hpp"
+#include "shellfrac/solver/dynamics_params.hpp"
 #include "shellfrac/solver/mesh_factory.hpp"
 
 namespace shellfrac::dist {
@@ -25,6 +26,7 @@ namespace shellfrac::solver {
 struct OutputParams {
   std::string base_name;  ///< results are <directory>/<base_name>.exo and <base_name>_history.csv
   std::string directory;  ///< "" = the current directory
+  std::vector<std::string> probes;  ///< node sets whose mean displacement/velocity go to the history
 
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
 };
@@ -37,6 +39,10 @@ struct Deck {
   std::map<std::string, materials::MaterialParams> materials;
   std::shared_ptr<dist::PartitionParams> partition;
   OutputParams output;
+  DiscretizationParams discretization;
+  TimeParams time;
+  std::vector<BoundaryCondition> boundary_conditions;
+  std::vector<InitialVelocity> initial_velocities;
   Teuchos::RCP<Teuchos::ParameterList> expanded;  ///< the deck with every default filled in
 
   /// The complete valid parameter tree (user-named sublists shown with one example entry), as printed by
@@ -50,15 +56,21 @@ struct Deck {
 struct RunSummary {
   GlobalId elements = 0, nodes = 0, edges = 0, interfaces = 0, boundary_edges = 0, non_manifold_edges = 0;
   GlobalId min_owned = 0, max_owned = 0, min_ghosts = 0, max_ghosts = 0;
+  double stable_dt = 0, dt = 0;  ///< stable estimate (before the safety factor) and the step used
+  long steps = 0;                ///< time steps taken
+  double wall_seconds = 0;       ///< wall time of the time loop
   std::vector<std::string> files;  ///< output files written (rank 0's view: base names)
 };
 
 /// A run. Construction does all the input work (collective); run() writes the outputs.
+class ShellDynamics;
+
 class Simulation {
  public:
   Simulation(const std::string& deck_file, MPI_Comm comm = MPI_COMM_WORLD);
   ~Simulation();
-  /// Writes the reference state (step 0) to Exodus and the history. Returns the summary. Collective.
+  /// Writes step 0, then (End Time > 0) integrates in time, writing Exodus at the output interval and the
+  /// history every History Interval steps. Returns the summary. Collective.
   RunSummary run();
   const Deck& deck() const { return deck_; }
   const RunSummary& summary() const { return summary_; }
@@ -71,6 +83,9 @@ class Simulation {
   Deck deck_;
   std::unique_ptr<mesh::SerialMesh> mesh_;
   std::unique_ptr<dist::DistributedMesh> dmesh_;
+  std::unique_ptr<ShellDynamics> dynamics_;
+  std::vector<std::string> probe_names_;
+  std::vector<std::vector<char>> probe_members_;
   RunSummary summary_;
 };
 

@@ -1,0 +1,527 @@
+#include "shellfrac/solver/shell_dynamics.hpp"
+
+#include <Kokkos_Core.hpp>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "shellfrac/core/error.hpp"
+#include "shellfrac/core/parallel.hpp"
+#include "shellfrac/disc/dg_element.hpp"
+#include "shellfrac/disc/director.hpp"
+#include "shellfrac/disc/lumped_mass.hpp"
+#include "shellfrac/disc/stable_time_step.hpp"
+#include "shellfrac/dist/distributed_mesh.hpp"
+#include "shellfrac/dist/element_maps.hpp"
+#include "shellfrac/materials/elastic_resultant.hpp"
+#include "shellfrac/mesh/serial_mesh.hpp"
+
+namespace shellfrac::solver {
+
+namespace {
+constexpr int nx = 18;            // position values per element (6 nodes x 3)
+constexpr int nt = 9;             // director values per element (3 vertices x 3)
+constexpr int nstate = nx + nt;   // columns of the ghost-exchanged state
+constexpr int nflux_edge = 15;    // lifting flux per edge: 3 position nodes x 3 + 2 director nodes x 3
+constexpr int nflux = 3 * nflux_edge;
+using exec = dist::execution_space;
+}  // namespace
+
+struct ShellDynamics::Impl {
+  const dist::DistributedMesh& dm;
+  DynamicsSetup setup;
+  LocalId no = 0, nov = 0;
+  std::vector<disc::DgElementRef> refs;        // owned
+  std::vector<std::array<bool, 3>> lift;        // owned: lifted edges
+  std::vector<materials::ElasticSection> sect;  // overlap
+  std::vector<double> beta_x, beta_t;           // overlap
+  std::vector<double> mass, inertia;            // owned: [no*6], [no*3]
+  std::vector<double> X;                        // overlap reference positions [nov*18]
+  std::vector<double> x, t;                     // overlap current positions, directors
+  std::vector<double> v, a, Lam, Tdot, Tddot;   // owned
+  std::vector<char> fixed_x, fixed_t;           // owned: per DG position node / director node
+  std::vector<double> f, g, energy_e;           // owned: forces, spatial director moments, strain energy
+  std::vector<double> flux;                     // overlap: lifting fluxes written by each element for its neighbours
+  // interfaces (all local ones)
+  std::vector<disc::DgInterfaceRef> iref;
+  std::vector<double> ibeta_x, ibeta_t, fi, gi, energy_i;
+  std::vector<std::vector<std::pair<int, int>>> incident;  // owned element -> (local interface, side 0 = minus)
+  // Tpetra transfer buffers
+  Teuchos::RCP<dist::multivector_type> state_own, state_ov, flux_own, flux_ov;
+  double dt_stable = 0, dt = 0, time = 0;
+  long step = 0;
+
+  Impl(const mesh::SerialMesh& mesh, const dist::DistributedMesh& d, const DynamicsSetup& s);
+  void sync_state();
+  void compute_forces();
+  void check_finite() const;
+};
+
+ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedMesh& d, const DynamicsSetup& s)
+    : dm(d), setup(s), no(d.num_owned()), nov(d.num_overlap()) {
+  SHELLFRAC_REQUIRE(dm.nodes_per_element() == 6, "the DG shell needs TRI6 elements");
+  const auto& file = setup.deck_file;
+  // Sections and DG penalty constants per overlap element (paper eq. 42).
+  sect.resize(nov), beta_x.resize(nov), beta_t.resize(nov);
+  for (LocalId le = 0; le < nov; ++le) {
+    const Section& sc = setup.block_sections.at(dm.element_block(le));
+    sect[le] = materials::make_elastic_section(sc.E, sc.nu, sc.h);
+    beta_x[le] = setup.discretization.cx * sc.E * sc.h;
+    beta_t[le] = setup.discretization.cT * sc.E * sc.h * sc.h * sc.h / 12;
+  }
+  // Reference positions and directors (overlap).
+  X.resize(nov * nx), t.resize(nov * nt);
+  for (LocalId le = 0; le < nov; ++le) {
+    for (int A = 0; A < 6; ++A)
+      for (int c = 0; c < 3; ++c) X[le * nx + A * 3 + c] = dm.node_coords(le, A)[c];
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) t[le * nt + a * 3 + c] = dm.reference_director(le, a)[c];
+  }
+  x = X;
+  // Non-manifold interfaces are penalized but not lifted (a kink has no single neighbour).
+  std::set<std::pair<LocalId, int>> not_lifted;
+  for (const auto& fc : dm.interfaces())
+    if (fc.non_manifold) not_lifted.insert({fc.minus, fc.minus_edge}), not_lifted.insert({fc.plus, fc.plus_edge});
+  // Element reference data, lifted edges, masses.
+  refs.resize(no), lift.resize(no), mass.resize(no * 6), inertia.resize(no * 3);
+  dt_stable = std::numeric_limits<double>::max();
+  for (LocalId le = 0; le < no; ++le) {
+    double Xe[6][3], Te[3][3];
+    for (int A = 0; A < 6; ++A)
+      for (int c = 0; c < 3; ++c) Xe[A][c] = X[le * nx + A * 3 + c];
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) Te[a][c] = t[le * nt + a * 3 + c];
+    bool same[3];
+    for (int k = 0; k < 3; ++k) {
+      const LocalId nb = dm.neighbor(le, k);
+      lift[le][k] = nb >= 0 && !not_lifted.count({le, k});
+      same[k] = nb >= 0 && dm.mesh_node(le, disc::edge_node(k, 0)) ==
+                               dm.mesh_node(nb, disc::edge_node(dm.neighbor_edge(le, k), 0));
+    }
+    disc::build_dg_element_ref(Xe, Te, same, refs[le]);
+    const Section& sc = setup.block_sections.at(dm.element_block(le));
+    double m[6], I[3];
+    disc::hrz_lumped_mass(Xe, sc.rho * sc.h, m);
+    disc::hrz_rotary_inertia(Xe, setup.time.rotary_inertia_scale * sc.rho * sc.h * sc.h * sc.h / 12, I);
+    for (int A = 0; A < 6; ++A) mass[le * 6 + A] = m[A];
+    for (int a = 0; a < 3; ++a) inertia[le * 3 + a] = I[a];
+    disc::StableStepParams sp{sc.E, sc.nu, sc.rho, sc.h};
+    sp.cx = setup.discretization.cx, sp.cT = setup.discretization.cT, sp.rotary_scale = setup.time.rotary_inertia_scale;
+    dt_stable = std::min(dt_stable, disc::element_stable_dt(sp, disc::characteristic_length(Xe)));
+  }
+  dt_stable = -parallel::max(-dt_stable, dm.comm());  // global minimum (exact, rank-count independent)
+  const auto& tp = setup.time;
+  if (tp.time_step > 0) {
+    SHELLFRAC_INPUT_REQUIRE(tp.force_time_step || tp.time_step <= dt_stable,
+                            file << ": 'Time Integration->Time Step' = " << tp.time_step
+                                 << " exceeds the stable estimate " << dt_stable
+                                 << " (math.md §8); lower it, or set 'Force Time Step' to true to run anyway");
+    dt = tp.time_step;
+  } else {
+    dt = tp.safety_factor * dt_stable;
+  }
+  // Interfaces.
+  const auto& ifs = dm.interfaces();
+  const int ni = static_cast<int>(ifs.size());
+  iref.resize(ni), ibeta_x.resize(ni), ibeta_t.resize(ni), fi.resize(ni * 2 * nflux_edge), energy_i.resize(ni);
+  incident.resize(no);
+  for (int i = 0; i < ni; ++i) {
+    const auto& fc = ifs[i];
+    // Reference edge data of the minus side, built with the same routine as the elements' own data.
+    double Xe[6][3], Te[3][3];
+    for (int A = 0; A < 6; ++A)
+      for (int c = 0; c < 3; ++c) Xe[A][c] = X[fc.minus * nx + A * 3 + c];
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) Te[a][c] = t[fc.minus * nt + a * 3 + c];
+    bool same[3] = {false, false, false};
+    same[fc.minus_edge] = dm.mesh_node(fc.minus, disc::edge_node(fc.minus_edge, 0)) ==
+                          dm.mesh_node(fc.plus, disc::edge_node(fc.plus_edge, 0));
+    disc::DgElementRef r;
+    disc::build_dg_element_ref(Xe, Te, same, r);
+    disc::build_dg_interface_ref(r.edge[fc.minus_edge], iref[i]);
+    // CHOICE: sides of different blocks use the mean of their penalty constants.
+    ibeta_x[i] = 0.5 * (beta_x[fc.minus] + beta_x[fc.plus]);
+    ibeta_t[i] = 0.5 * (beta_t[fc.minus] + beta_t[fc.plus]);
+    if (fc.minus < no) incident[fc.minus].push_back({i, 0});
+    if (fc.plus < no) incident[fc.plus].push_back({i, 1});
+  }
+  // Boundary conditions on every DG copy of the nodes of a node set.
+  fixed_x.assign(no * 6, 0), fixed_t.assign(no * 3, 0);
+  for (const auto& bc : setup.boundary_conditions) {
+    const auto it = std::find_if(mesh.node_sets.begin(), mesh.node_sets.end(),
+                                 [&](const auto& ns) { return ns.name == bc.node_set; });
+    std::string names;
+    for (const auto& ns : mesh.node_sets) names += " '" + ns.name + "'";
+    SHELLFRAC_INPUT_REQUIRE(it != mesh.node_sets.end(), file << ": boundary condition '" << bc.name << "' names node set '"
+                                                             << bc.node_set << "', which the mesh (" << mesh.source
+                                                             << ") does not have; its node sets:" << names);
+    std::vector<char> member(mesh.num_nodes(), 0);
+    for (GlobalId n : it->nodes) member[n] = 1;
+    for (LocalId le = 0; le < no; ++le)
+      for (int A = 0; A < 6; ++A) {
+        if (!member[dm.mesh_node(le, A)]) continue;
+        fixed_x[le * 6 + A] = 1;
+        if (A < 3 && bc.type == BoundaryCondition::Type::Clamped) fixed_t[le * 3 + A] = 1;
+      }
+  }
+  // Initial velocities on every DG copy of the nodes of the listed elements (no spurious initial jumps).
+  v.assign(no * nx, 0.0);
+  for (const auto& iv : setup.initial_velocities) {
+    std::vector<char> member(mesh.num_nodes(), 0);
+    const auto mark = [&](GlobalId e) {
+      for (int A = 0; A < mesh.nodes_per_element; ++A) member[mesh.node(e, A)] = 1;
+    };
+    bool found = iv.elements == "all";
+    if (found)
+      for (GlobalId e = 0; e < mesh.num_elements(); ++e) mark(e);
+    for (const auto& es : mesh.element_sets)
+      if (es.name == iv.elements) {
+        found = true;
+        for (GlobalId e : es.elements) mark(e);
+      }
+    for (std::size_t b = 0; b < mesh.blocks.size(); ++b)
+      if (mesh.blocks[b].name == iv.elements) {
+        found = true;
+        for (GlobalId e = 0; e < mesh.num_elements(); ++e)
+          if (mesh.element_block[e] == static_cast<int>(b)) mark(e);
+      }
+    SHELLFRAC_INPUT_REQUIRE(found, file << ": initial condition '" << iv.name << "' names '" << iv.elements
+                                        << "', which is neither 'all' nor an element set or block of the mesh");
+    for (LocalId le = 0; le < no; ++le)
+      for (int A = 0; A < 6; ++A)
+        if (member[dm.mesh_node(le, A)] && !fixed_x[le * 6 + A])
+          for (int c = 0; c < 3; ++c) v[le * nx + A * 3 + c] = iv.velocity[c];
+  }
+  // Director state: rotations from Rodrigues (paper A.1), at rest.
+  Lam.resize(no * 27), Tdot.assign(no * 6, 0.0), Tddot.assign(no * 6, 0.0), a.assign(no * nx, 0.0);
+  for (LocalId le = 0; le < no; ++le)
+    for (int b = 0; b < 3; ++b) {
+      double L[3][3];
+      disc::initial_rotation(&t[le * nt + b * 3], L);
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) Lam[le * 27 + b * 9 + i * 3 + j] = L[i][j];
+    }
+  f.resize(no * nx), g.resize(no * nt), energy_e.resize(no), flux.assign(nov * nflux, 0.0);
+  const auto& maps = dm.maps();
+  state_own = Teuchos::rcp(new dist::multivector_type(maps.owned, nstate));
+  state_ov = Teuchos::rcp(new dist::multivector_type(maps.overlap, nstate));
+  flux_own = Teuchos::rcp(new dist::multivector_type(maps.owned, nflux));
+  flux_ov = Teuchos::rcp(new dist::multivector_type(maps.overlap, nflux));
+  // Start-up: forces and accelerations at t = 0 (math.md §7.4).
+  sync_state();
+  compute_forces();
+  for (LocalId le = 0; le < no; ++le) {
+    for (int A = 0; A < 6; ++A)
+      for (int c = 0; c < 3; ++c)
+        a[le * nx + A * 3 + c] = fixed_x[le * 6 + A] ? 0.0 : -f[le * nx + A * 3 + c] / mass[le * 6 + A];
+    for (int b = 0; b < 3; ++b) {
+      double L[3][3], fT[2];
+      for (int i = 0; i < 9; ++i) L[i / 3][i % 3] = Lam[le * 27 + b * 9 + i];
+      disc::lambda_bar_transpose_times(L, &g[le * nt + b * 3], fT);
+      for (int c = 0; c < 2; ++c) Tddot[le * 6 + b * 2 + c] = fixed_t[le * 3 + b] ? 0.0 : -fT[c] / inertia[le * 3 + b];
+    }
+  }
+}
+
+void ShellDynamics::Impl::sync_state() {
+  // Owned rows -> ghost rows of the overlap arrays (Import, INSERT: no arithmetic, deterministic).
+  {
+    auto s = state_own->getLocalViewHost(Tpetra::Access::OverwriteAll);
+    for (LocalId le = 0; le < no; ++le) {
+      for (int i = 0; i < nx; ++i) s(le, i) = x[le * nx + i];
+      for (int i = 0; i < nt; ++i) s(le, nx + i) = t[le * nt + i];
+    }
+  }
+  state_ov->doImport(*state_own, *dm.maps().importer, Tpetra::INSERT);
+  auto s = state_ov->getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (LocalId le = no; le < nov; ++le) {
+    for (int i = 0; i < nx; ++i) x[le * nx + i] = s(le, i);
+    for (int i = 0; i < nt; ++i) t[le * nt + i] = s(le, nx + i);
+  }
+}
+
+void ShellDynamics::Impl::compute_forces() {
+  // 1. Element kernel over owned elements: writes only its own slots of f, g, energy_e and flux.
+  {
+    const double* xp = x.data();
+    const double* tp = t.data();
+    double* fp = f.data();
+    double* gp = g.data();
+    double* ep = energy_e.data();
+    double* flp = flux.data();
+    const auto* rp = refs.data();
+    const auto* lp = lift.data();
+    const auto* sp = sect.data();
+    const dist::DistributedMesh* d = &dm;
+    Kokkos::parallel_for(
+        "shellfrac::ShellElementForces", Kokkos::RangePolicy<exec>(0, no), [=](const int le) {
+          double xe[6][3], te[3][3], xn[3][3][3] = {}, tn[3][2][3] = {}, fe[6][3], ge[3][3], fk[3][3][3], gk[3][2][3];
+          for (int i = 0; i < nx; ++i) xe[i / 3][i % 3] = xp[le * nx + i];
+          for (int i = 0; i < nt; ++i) te[i / 3][i % 3] = tp[le * nt + i];
+          bool lf[3];
+          for (int k = 0; k < 3; ++k) {
+            lf[k] = lp[le][k];
+            if (!lf[k]) continue;
+            const LocalId nb = d->neighbor(le, k);
+            const int kk = d->neighbor_edge(le, k);
+            for (int j = 0; j < 3; ++j)
+              for (int c = 0; c < 3; ++c) xn[k][j][c] = xp[nb * nx + disc::edge_node(kk, j) * 3 + c];
+            for (int j = 0; j < 2; ++j)
+              for (int c = 0; c < 3; ++c) tn[k][j][c] = tp[nb * nt + disc::edge_node(kk, j) * 3 + c];
+          }
+          const materials::ElasticSection sc = sp[le];
+          auto law = [&sc](const double eps[3], const double gam[2], const double rho[3], double N[3], double Q[2],
+                           double M[3]) {
+            materials::elastic_resultants(sc, eps, gam, rho, N, Q, M);
+            return materials::elastic_energy(sc, eps, gam, rho);
+          };
+          ep[le] = disc::dg_element_forces(rp[le], xe, te, lf, xn, tn, law, fe, ge, fk, gk);
+          for (int i = 0; i < nx; ++i) fp[le * nx + i] = fe[i / 3][i % 3];
+          for (int i = 0; i < nt; ++i) gp[le * nt + i] = ge[i / 3][i % 3];
+          for (int k = 0; k < 3; ++k) {
+            double* out = flp + le * nflux + k * nflux_edge;
+            for (int j = 0; j < 3; ++j)
+              for (int c = 0; c < 3; ++c) out[j * 3 + c] = fk[k][j][c];
+            for (int j = 0; j < 2; ++j)
+              for (int c = 0; c < 3; ++c) out[9 + j * 3 + c] = gk[k][j][c];
+          }
+        });
+  }
+  // 2. The ghosts' fluxes come from their owners (Import, INSERT).
+  {
+    auto s = flux_own->getLocalViewHost(Tpetra::Access::OverwriteAll);
+    for (LocalId le = 0; le < no; ++le)
+      for (int i = 0; i < nflux; ++i) s(le, i) = flux[le * nflux + i];
+  }
+  flux_ov->doImport(*flux_own, *dm.maps().importer, Tpetra::INSERT);
+  {
+    auto s = flux_ov->getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (LocalId le = no; le < nov; ++le)
+      for (int i = 0; i < nflux; ++i) flux[le * nflux + i] = s(le, i);
+  }
+  // 3. Interface kernel (penalty on intact interfaces), every local interface: writes its own slots.
+  {
+    const auto& ifs = dm.interfaces();
+    const auto* ip = ifs.data();
+    const auto* irp = iref.data();
+    const double *xp = x.data(), *tp = t.data(), *bx = ibeta_x.data(), *bt = ibeta_t.data();
+    double* fip = fi.data();
+    double* eip = energy_i.data();
+    Kokkos::parallel_for(
+        "shellfrac::InterfacePenaltyForces", Kokkos::RangePolicy<exec>(0, static_cast<int>(ifs.size())),
+        [=](const int i) {
+          const auto& fc = ip[i];
+          double xm[3][3], tm[2][3], xq[3][3], tq[2][3], fm[3][3], gm[2][3], fq[3][3], gq[2][3];
+          for (int j = 0; j < 3; ++j)
+            for (int c = 0; c < 3; ++c) {
+              xm[j][c] = xp[fc.minus * nx + disc::edge_node(fc.minus_edge, j) * 3 + c];
+              xq[j][c] = xp[fc.plus * nx + disc::edge_node(fc.plus_edge, j) * 3 + c];
+            }
+          for (int j = 0; j < 2; ++j)
+            for (int c = 0; c < 3; ++c) {
+              tm[j][c] = tp[fc.minus * nt + disc::edge_node(fc.minus_edge, j) * 3 + c];
+              tq[j][c] = tp[fc.plus * nt + disc::edge_node(fc.plus_edge, j) * 3 + c];
+            }
+          eip[i] = disc::dg_penalty_forces(irp[i], bx[i], bt[i], xm, tm, xq, tq, fm, gm, fq, gq);
+          double* out = fip + i * 2 * nflux_edge;
+          for (int j = 0; j < 3; ++j)
+            for (int c = 0; c < 3; ++c) out[j * 3 + c] = fm[j][c], out[nflux_edge + j * 3 + c] = fq[j][c];
+          for (int j = 0; j < 2; ++j)
+            for (int c = 0; c < 3; ++c) out[9 + j * 3 + c] = gm[j][c], out[nflux_edge + 9 + j * 3 + c] = gq[j][c];
+        });
+  }
+  // 4. Gather, per owned element in a fixed order: own, then neighbours' fluxes by local edge, then
+  //    interfaces by global id.
+  {
+    double* fp = f.data();
+    double* gp = g.data();
+    const double* flp = flux.data();
+    const double* fip = fi.data();
+    const auto* lp = lift.data();
+    const auto* inc = incident.data();
+    const auto& ifs = dm.interfaces();
+    const auto* ip = ifs.data();
+    const dist::DistributedMesh* d = &dm;
+    Kokkos::parallel_for("shellfrac::GatherForces", Kokkos::RangePolicy<exec>(0, no), [=](const int le) {
+      for (int k = 0; k < 3; ++k) {
+        if (!lp[le][k]) continue;
+        const double* in = flp + d->neighbor(le, k) * nflux + d->neighbor_edge(le, k) * nflux_edge;
+        for (int j = 0; j < 3; ++j)
+          for (int c = 0; c < 3; ++c) fp[le * nx + disc::edge_node(k, j) * 3 + c] += in[j * 3 + c];
+        for (int j = 0; j < 2; ++j)
+          for (int c = 0; c < 3; ++c) gp[le * nt + disc::edge_node(k, j) * 3 + c] += in[9 + j * 3 + c];
+      }
+      for (const auto& [i, side] : inc[le]) {
+        const int edge = side == 0 ? ip[i].minus_edge : ip[i].plus_edge;
+        const double* in = fip + i * 2 * nflux_edge + side * nflux_edge;
+        for (int j = 0; j < 3; ++j)
+          for (int c = 0; c < 3; ++c) fp[le * nx + disc::edge_node(edge, j) * 3 + c] += in[j * 3 + c];
+        for (int j = 0; j < 2; ++j)
+          for (int c = 0; c < 3; ++c) gp[le * nt + disc::edge_node(edge, j) * 3 + c] += in[9 + j * 3 + c];
+      }
+    });
+  }
+}
+
+void ShellDynamics::Impl::check_finite() const {
+  GlobalId bad = -1;
+  for (LocalId le = 0; le < no && bad < 0; ++le)
+    for (int i = 0; i < nx; ++i)
+      if (!std::isfinite(x[le * nx + i]) || !std::isfinite(f[le * nx + i])) {
+        bad = dm.element_gid(le);
+        break;
+      }
+  const double worst = parallel::max(bad >= 0 ? double(bad) : -1.0, dm.comm());
+  SHELLFRAC_REQUIRE(worst < 0, "numerical blow-up at step " << step << ", time " << time << ": non-finite position or "
+                                   << "force in element " << GlobalId(worst) + 1
+                                   << " (time step too large or unstable input?)");
+}
+
+ShellDynamics::ShellDynamics(const mesh::SerialMesh& mesh, const dist::DistributedMesh& dm, const DynamicsSetup& setup)
+    : impl_(std::make_unique<Impl>(mesh, dm, setup)) {}
+ShellDynamics::~ShellDynamics() = default;
+double ShellDynamics::stable_time_step() const { return impl_->dt_stable; }
+double ShellDynamics::time_step() const { return impl_->dt; }
+double ShellDynamics::time() const { return impl_->time; }
+long ShellDynamics::step_count() const { return impl_->step; }
+
+void ShellDynamics::step() {
+  Impl& s = *impl_;
+  const double dt = s.dt;
+  std::vector<double> Tdot_pre(s.no * 6);
+  // Predictor (math.md §7.4 steps 1-2): positions, then directors by the exponential map.
+  for (LocalId le = 0; le < s.no; ++le) {
+    for (int A = 0; A < 6; ++A)
+      for (int c = 0; c < 3; ++c) {
+        const int i = le * nx + A * 3 + c;
+        if (s.fixed_x[le * 6 + A]) {
+          s.x[i] = s.X[i], s.v[i] = 0;
+        } else {
+          s.x[i] += dt * s.v[i] + 0.5 * dt * dt * s.a[i];  // x^{n+1} = x^n + dt v^n + dt^2/2 a^n
+          s.v[i] += 0.5 * dt * s.a[i];                      // v_pre = v^n + dt/2 a^n
+        }
+      }
+    for (int b = 0; b < 3; ++b) {
+      double dT[2];
+      for (int c = 0; c < 2; ++c) {
+        const int i = le * 6 + b * 2 + c;
+        const bool fixed = s.fixed_t[le * 3 + b];
+        dT[c] = fixed ? 0.0 : dt * s.Tdot[i] + 0.5 * dt * dt * s.Tddot[i];  // SEED eq. 47
+        Tdot_pre[i] = fixed ? 0.0 : s.Tdot[i] + 0.5 * dt * s.Tddot[i];     // SEED eq. 48, gamma = 1/2
+      }
+      double L[3][3];
+      for (int i = 0; i < 9; ++i) L[i / 3][i % 3] = s.Lam[le * 27 + b * 9 + i];
+      disc::update_director(&s.t[le * nt + b * 3], L, dT, &s.t[le * nt + b * 3], L);  // Algorithm 1
+      for (int i = 0; i < 9; ++i) s.Lam[le * 27 + b * 9 + i] = L[i / 3][i % 3];
+    }
+  }
+  // Forces at t_{n+1}.
+  s.sync_state();
+  s.compute_forces();
+  // Accelerations and corrector (steps 4-5).
+  for (LocalId le = 0; le < s.no; ++le) {
+    for (int A = 0; A < 6; ++A)
+      for (int c = 0; c < 3; ++c) {
+        const int i = le * nx + A * 3 + c;
+        s.a[i] = s.fixed_x[le * 6 + A] ? 0.0 : -s.f[i] / s.mass[le * 6 + A];
+        s.v[i] += 0.5 * dt * s.a[i];  // v^{n+1} = v_pre + dt/2 a^{n+1}
+      }
+    for (int b = 0; b < 3; ++b) {
+      double L[3][3], fT[2];
+      for (int i = 0; i < 9; ++i) L[i / 3][i % 3] = s.Lam[le * 27 + b * 9 + i];
+      disc::lambda_bar_transpose_times(L, &s.g[le * nt + b * 3], fT);  // f_T = Lambda-bar^T g
+      for (int c = 0; c < 2; ++c) {
+        const int i = le * 6 + b * 2 + c;
+        s.Tddot[i] = s.fixed_t[le * 3 + b] ? 0.0 : -fT[c] / s.inertia[le * 3 + b];  // SEED eq. 49
+        s.Tdot[i] = Tdot_pre[i] + 0.5 * dt * s.Tddot[i];                            // SEED eq. 50, gamma = 1/2
+      }
+    }
+  }
+  s.time += dt;
+  ++s.step;
+  s.check_finite();
+}
+
+namespace {
+/// Sum of values contributed by all ranks, in increasing id order (bitwise independent of the rank count).
+double ordered_sum(const std::vector<GlobalId>& ids, const std::vector<double>& vals, MPI_Comm comm) {
+  const auto all_ids = parallel::all_gather(ids, comm);
+  const auto all_vals = parallel::all_gather(vals, comm);
+  std::vector<std::size_t> order(all_ids.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return all_ids[p] < all_ids[q]; });
+  double sum = 0;
+  for (std::size_t i : order) sum += all_vals[i];
+  return sum;
+}
+}  // namespace
+
+std::vector<double> ShellDynamics::probes(const std::vector<std::vector<char>>& members) const {
+  const Impl& s = *impl_;
+  std::vector<double> out;
+  for (const auto& member : members) {
+    std::vector<GlobalId> ids;
+    std::vector<std::vector<double>> vals(6);
+    for (LocalId le = 0; le < s.no; ++le)
+      for (int A = 0; A < 6; ++A) {
+        if (!member[s.dm.mesh_node(le, A)]) continue;
+        ids.push_back(s.dm.dg_node_gid(le, A));
+        for (int c = 0; c < 3; ++c) {
+          vals[c].push_back(s.x[le * nx + A * 3 + c] - s.X[le * nx + A * 3 + c]);
+          vals[3 + c].push_back(s.v[le * nx + A * 3 + c]);
+        }
+      }
+    const double count = double(parallel::sum(static_cast<std::int64_t>(ids.size()), s.dm.comm()));
+    for (int c = 0; c < 6; ++c) out.push_back(count > 0 ? ordered_sum(ids, vals[c], s.dm.comm()) / count : 0.0);
+  }
+  return out;
+}
+
+StepRecord ShellDynamics::record() const {
+  const Impl& s = *impl_;
+  // Per-element kinetic + strain energy and per-owned-interface penalty energy, summed in global-id order
+  // on every rank (bitwise independent of the rank count).
+  std::vector<GlobalId> egid(s.no);
+  std::vector<double> ek(s.no), es(s.no);
+  for (LocalId le = 0; le < s.no; ++le) {
+    egid[le] = s.dm.element_gid(le);
+    double k = 0;
+    for (int A = 0; A < 6; ++A)
+      for (int c = 0; c < 3; ++c) k += 0.5 * s.mass[le * 6 + A] * s.v[le * nx + A * 3 + c] * s.v[le * nx + A * 3 + c];
+    for (int b = 0; b < 3; ++b)
+      for (int c = 0; c < 2; ++c) k += 0.5 * s.inertia[le * 3 + b] * s.Tdot[le * 6 + b * 2 + c] * s.Tdot[le * 6 + b * 2 + c];
+    ek[le] = k, es[le] = s.energy_e[le];
+  }
+  std::vector<GlobalId> igid;
+  std::vector<double> ep;
+  const auto& ifs = s.dm.interfaces();
+  for (std::size_t i = 0; i < ifs.size(); ++i)
+    if (ifs[i].owned) igid.push_back(ifs[i].gid), ep.push_back(s.energy_i[i]);
+  StepRecord r;
+  r.step = s.step, r.time = s.time, r.dt = s.dt;
+  r.kinetic = ordered_sum(egid, ek, s.dm.comm());
+  r.strain = ordered_sum(egid, es, s.dm.comm());
+  r.penalty = ordered_sum(igid, ep, s.dm.comm());
+  return r;
+}
+
+void ShellDynamics::nodal_fields(std::vector<Vec3>& displacement, std::vector<Vec3>& velocity,
+                                 std::vector<Vec3>& director) const {
+  const Impl& s = *impl_;
+  displacement.resize(s.no * 6), velocity.resize(s.no * 6), director.resize(s.no * 6);
+  for (LocalId le = 0; le < s.no; ++le)
+    for (int A = 0; A < 6; ++A) {
+      for (int c = 0; c < 3; ++c) {
+        displacement[le * 6 + A][c] = s.x[le * nx + A * 3 + c] - s.X[le * nx + A * 3 + c];
+        velocity[le * 6 + A][c] = s.v[le * nx + A * 3 + c];
+        // P1 directors: a mid-side node shows the mean of its edge's vertex directors (t_h is linear).
+        director[le * 6 + A][c] = A < 3 ? s.t[le * nt + A * 3 + c]
+                                        : 0.5 * (s.t[le * nt + disc::edge_node(A - 3, 0) * 3 + c] +
+                                                 s.t[le * nt + disc::edge_node(A - 3, 1) * 3 + c]);
+      }
+    }
+}
+
+}  // namespace shellfrac::solver
