@@ -1,6 +1,7 @@
 #include "shellfrac/solver/shell_dynamics.hpp"
 
 #include <Kokkos_Core.hpp>
+#include <chrono>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -52,6 +53,7 @@ struct ShellDynamics::Impl {
   Teuchos::RCP<dist::multivector_type> state_own, state_ov, flux_own, flux_ov;
   double dt_stable = 0, dt = 0, time = 0;
   long step = 0;
+  PhaseTimes times;
 
   Impl(const mesh::SerialMesh& mesh, const dist::DistributedMesh& d, const DynamicsSetup& s);
   void sync_state();
@@ -225,7 +227,21 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
   }
 }
 
+namespace {
+/// Adds the wall time of its scope to a counter.
+class ScopedTimer {
+ public:
+  explicit ScopedTimer(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~ScopedTimer() { total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point start_;
+};
+}  // namespace
+
 void ShellDynamics::Impl::sync_state() {
+  ScopedTimer timer(times.exchange);
   // Owned rows -> ghost rows of the overlap arrays (Import, INSERT: no arithmetic, deterministic).
   {
     auto s = state_own->getLocalViewHost(Tpetra::Access::OverwriteAll);
@@ -245,6 +261,7 @@ void ShellDynamics::Impl::sync_state() {
 void ShellDynamics::Impl::compute_forces() {
   // 1. Element kernel over owned elements: writes only its own slots of f, g, energy_e and flux.
   {
+    ScopedTimer timer(times.element);
     const double* xp = x.data();
     const double* tp = t.data();
     double* fp = f.data();
@@ -291,18 +308,20 @@ void ShellDynamics::Impl::compute_forces() {
   }
   // 2. The ghosts' fluxes come from their owners (Import, INSERT).
   {
-    auto s = flux_own->getLocalViewHost(Tpetra::Access::OverwriteAll);
-    for (LocalId le = 0; le < no; ++le)
-      for (int i = 0; i < nflux; ++i) s(le, i) = flux[le * nflux + i];
-  }
-  flux_ov->doImport(*flux_own, *dm.maps().importer, Tpetra::INSERT);
-  {
+    ScopedTimer timer(times.exchange);
+    {
+      auto s = flux_own->getLocalViewHost(Tpetra::Access::OverwriteAll);
+      for (LocalId le = 0; le < no; ++le)
+        for (int i = 0; i < nflux; ++i) s(le, i) = flux[le * nflux + i];
+    }
+    flux_ov->doImport(*flux_own, *dm.maps().importer, Tpetra::INSERT);
     auto s = flux_ov->getLocalViewHost(Tpetra::Access::ReadOnly);
     for (LocalId le = no; le < nov; ++le)
       for (int i = 0; i < nflux; ++i) flux[le * nflux + i] = s(le, i);
   }
   // 3. Interface kernel (penalty on intact interfaces), every local interface: writes its own slots.
   {
+    ScopedTimer timer(times.interface);
     const auto& ifs = dm.interfaces();
     const auto* ip = ifs.data();
     const auto* irp = iref.data();
@@ -335,6 +354,7 @@ void ShellDynamics::Impl::compute_forces() {
   // 4. Gather, per owned element in a fixed order: own, then neighbours' fluxes by local edge, then
   //    interfaces by global id.
   {
+    ScopedTimer timer(times.gather);
     double* fp = f.data();
     double* gp = g.data();
     const double* flp = flux.data();
@@ -391,6 +411,7 @@ void ShellDynamics::step() {
   Impl& s = *impl_;
   const double dt = s.dt;
   std::vector<double> Tdot_pre(s.no * 6);
+  auto t0 = std::chrono::steady_clock::now();
   // Predictor (math.md §7.4 steps 1-2): positions, then directors by the exponential map.
   for (LocalId le = 0; le < s.no; ++le) {
     for (int A = 0; A < 6; ++A)
@@ -417,9 +438,11 @@ void ShellDynamics::step() {
       for (int i = 0; i < 9; ++i) s.Lam[le * 27 + b * 9 + i] = L[i / 3][i % 3];
     }
   }
+  s.times.update += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   // Forces at t_{n+1}.
   s.sync_state();
   s.compute_forces();
+  t0 = std::chrono::steady_clock::now();
   // Accelerations and corrector (steps 4-5).
   for (LocalId le = 0; le < s.no; ++le) {
     for (int A = 0; A < 6; ++A)
@@ -442,6 +465,21 @@ void ShellDynamics::step() {
   s.time += dt;
   ++s.step;
   s.check_finite();
+  s.times.update += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+const PhaseTimes& ShellDynamics::phase_times() const { return impl_->times; }
+
+double ShellDynamics::bytes_per_element() const {
+  const Impl& s = *impl_;
+  const double bytes = sizeof(disc::DgElementRef) * double(s.refs.size()) +
+                       sizeof(double) * double(s.X.size() + s.x.size() + s.t.size() + s.v.size() + s.a.size() +
+                                           s.Lam.size() + s.Tdot.size() + s.Tddot.size() + s.mass.size() +
+                                           s.inertia.size() + s.f.size() + s.g.size() + s.flux.size() +
+                                           s.energy_e.size() + s.fi.size() + s.energy_i.size()) +
+                       sizeof(disc::DgInterfaceRef) * double(s.iref.size()) +
+                       sizeof(double) * double(nstate + nflux) * double(2 * s.nov);  // Tpetra transfer buffers
+  return s.no > 0 ? bytes / s.no : 0.0;
 }
 
 namespace {

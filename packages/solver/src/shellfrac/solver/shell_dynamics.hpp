@@ -47,6 +47,15 @@ struct StepRecord {
   double kinetic = 0, strain = 0, penalty = 0, external_work = 0, balance_error = 0;
 };
 
+/// Wall time spent in each phase of the steps taken so far, on this rank [s].
+struct PhaseTimes {
+  double element = 0;    ///< element kernel: DG derivatives, resultants, own forces, lifting fluxes
+  double interface = 0;  ///< interface kernel: penalty forces
+  double gather = 0;     ///< gathering fluxes and interface forces into each element
+  double exchange = 0;   ///< Tpetra Imports of positions/directors and of the flux buffers (incl. packing)
+  double update = 0;     ///< predictor, director update, accelerations, corrector, checks
+};
+
 /// The explicit DG shell solver on one rank's part of the mesh.
 class ShellDynamics {
  public:
@@ -70,6 +79,10 @@ class ShellDynamics {
   /// Node-set probes: for each entry of `members` (a flag per mesh node), the mean displacement (3) and
   /// velocity (3) over every DG copy of its nodes, summed in global DG-node order. Collective.
   std::vector<double> probes(const std::vector<std::vector<char>>& members) const;
+  /// Accumulated phase timings on this rank.
+  const PhaseTimes& phase_times() const;
+  /// Bytes of per-element state and reference data held on this rank, divided by the owned elements.
+  double bytes_per_element() const;
   /// Owned DG nodal fields, element-major as DistributedMesh::node_coords: displacement, velocity, director
   /// (P1: mid-side nodes show the mean of their edge's vertex directors).
   void nodal_fields(std::vector<Vec3>& displacement, std::vector<Vec3>& velocity, std::vector<Vec3>& director) const;
