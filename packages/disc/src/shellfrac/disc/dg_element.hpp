@@ -3,6 +3,8 @@
 /// The DG shell operator on one element and on one interface (math.md §5; paper §4.2, eqs. 41-44).
 ///  * DgElementRef: reference data of an element, constant in time (area-point geometry, shape function
 ///    derivatives, reference strain offsets, edge-point data and lifting weights W).
+///  * dg_kinematics: the DG derivatives by lifting (math.md §5.2) at the area points (a_i, d_i, t_h);
+///    the first stage of dg_element_forces, exposed for verification.
 ///  * dg_element_forces: DG derivatives by lifting of the jumps over the element's lifted edges (math.md
 ///    §5.2), strains, resultants (a point law passed in), the element's internal forces on its own nodes
 ///    and its lifting fluxes on the neighbours' edge nodes (§5.4). Returns the element's strain energy.
@@ -156,19 +158,17 @@ KOKKOS_INLINE_FUNCTION void build_dg_element_ref(const double X[6][3], const dou
       for (int al = 0; al < 2; ++al) R.edge[k].Wt[g][al] = 0.5 * R.edge[k].omega[g] * R.edge[k].nu_cov[g][al] / R.area;
 }
 
-/// Internal forces of one element (math.md §5.4) with the point law `law(eps, gam, rho, N, Q, M)` returning
-/// the stored energy per unit reference area.
+/// DG kinematics of one element at its area points (math.md §5.2, §5.4 "forward evaluation"):
+/// a_i = d^DG_i phi_h (P1 lifting of the position jumps), d_i = d^DG_i t_h (P0 lifting of the director
+/// jumps), both in the local Cartesian reference frame, and the interpolated director t_h(xi_q).
 ///   x[6][3], t[3][3]: the element's current node positions and vertex directors.
 ///   lift[k]: edge k is an intact interface with a single neighbour (its jump is lifted).
-///   xn[k][j][3], tn[k][j][3]: the neighbour's edge nodes across edge k, in the neighbour's edge-local order.
-/// Outputs (overwritten): f[6][3] and g[3][3] on the element's own nodes; fn[k][j][3], gn[k][j][3] on the
-/// neighbour's edge nodes (neighbour's edge-local order), zero where lift[k] is false.
-/// Returns the element's strain energy sum_q w_q j0_q W.
-template <class Law>
-KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const double x[6][3], const double t[3][3],
-                                                const bool lift[3], const double xn[3][3][3], const double tn[3][2][3],
-                                                const Law& law, double f[6][3], double g[3][3], double fn[3][3][3],
-                                                double gn[3][2][3]) {
+///   xn[k][j][3], tn[k][j][3]: the neighbour's edge nodes across edge k, in the neighbour's edge-local order
+///   (read only where lift[k] is true).
+/// Output (overwritten): kin[q] for q = 0..num_area_points-1.
+KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const double x[6][3], const double t[3][3],
+                                          const bool lift[3], const double xn[3][3][3], const double tn[3][2][3],
+                                          ShellKinematics kin[num_area_points]) {
   // 1. Liftings of the one-sided jumps [u]^E = u^E - u^E' (math.md §5.2).
   double Rx[3][2][3][3] = {};  // [k][alpha][component][psi]
   double Rt[3][2][3] = {};     // [k][alpha][component]
@@ -192,14 +192,8 @@ KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const dou
       }
     }
   }
-  // 2. Area points: DG derivatives, strains, resultants, own forces; accumulate the projections Pi.
-  for (int A = 0; A < 6; ++A) f[A][0] = f[A][1] = f[A][2] = 0;
-  for (int a = 0; a < 3; ++a) g[a][0] = g[a][1] = g[a][2] = 0;
-  double Pix[2][3][3] = {};  // [alpha][component][psi]: sum_q w j0 n^alpha (x) psi
-  double Pit[2][3] = {};     // [alpha][component]:      sum_q w j0 m^alpha
-  double energy = 0;
+  // 2. Area points: DG derivatives (math.md §5.2).
   for (int q = 0; q < num_area_points; ++q) {
-    ShellKinematics kin;
     for (int c = 0; c < 3; ++c) {
       double aa[2], dd[2];
       for (int al = 0; al < 2; ++al) {
@@ -213,11 +207,36 @@ KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const dou
         }
       }
       for (int i = 0; i < 2; ++i) {
-        kin.a[i][c] = aa[0] * R.Jinv[q][0][i] + aa[1] * R.Jinv[q][1][i];
-        kin.d[i][c] = dd[0] * R.Jinv[q][0][i] + dd[1] * R.Jinv[q][1][i];
+        kin[q].a[i][c] = aa[0] * R.Jinv[q][0][i] + aa[1] * R.Jinv[q][1][i];
+        kin[q].d[i][c] = dd[0] * R.Jinv[q][0][i] + dd[1] * R.Jinv[q][1][i];
       }
-      kin.t[c] = R.L[q][0] * t[0][c] + R.L[q][1] * t[1][c] + R.L[q][2] * t[2][c];
+      kin[q].t[c] = R.L[q][0] * t[0][c] + R.L[q][1] * t[1][c] + R.L[q][2] * t[2][c];
     }
+  }
+}
+
+/// Internal forces of one element (math.md §5.4) with the point law `law(eps, gam, rho, N, Q, M)` returning
+/// the stored energy per unit reference area.
+///   x[6][3], t[3][3], lift[3], xn, tn: as for dg_kinematics.
+/// Outputs (overwritten): f[6][3] and g[3][3] on the element's own nodes; fn[k][j][3], gn[k][j][3] on the
+/// neighbour's edge nodes (neighbour's edge-local order), zero where lift[k] is false.
+/// Returns the element's strain energy sum_q w_q j0_q W.
+template <class Law>
+KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const double x[6][3], const double t[3][3],
+                                                const bool lift[3], const double xn[3][3][3], const double tn[3][2][3],
+                                                const Law& law, double f[6][3], double g[3][3], double fn[3][3][3],
+                                                double gn[3][2][3]) {
+  // 1.-2. Liftings of the jumps and DG kinematics at the area points.
+  ShellKinematics kins[num_area_points];
+  dg_kinematics(R, x, t, lift, xn, tn, kins);
+  // 2'. Area points: strains, resultants, own forces; accumulate the projections Pi.
+  for (int A = 0; A < 6; ++A) f[A][0] = f[A][1] = f[A][2] = 0;
+  for (int a = 0; a < 3; ++a) g[a][0] = g[a][1] = g[a][2] = 0;
+  double Pix[2][3][3] = {};  // [alpha][component][psi]: sum_q w j0 n^alpha (x) psi
+  double Pit[2][3] = {};     // [alpha][component]:      sum_q w j0 m^alpha
+  double energy = 0;
+  for (int q = 0; q < num_area_points; ++q) {
+    const ShellKinematics& kin = kins[q];
     double eps[3], gam[2], rho[3], N[3], Q[2], M[3];
     compute_strains(kin, R.ref[q], eps, gam, rho);
     energy += R.wj0[q] * law(eps, gam, rho, N, Q, M);
