@@ -10,42 +10,16 @@
 #include <mpi.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "deck_test_util.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/io/exodus_results.hpp"
 #include "shellfrac/solver/simulation.hpp"
 
 using namespace shellfrac;
-namespace fs = std::filesystem;
+using namespace shellfrac::test;
 
 namespace {
-
-std::string work_dir(const std::string& name) {
-  const std::string dir = name + ".np" + std::to_string(parallel::size());
-  if (parallel::rank() == 0) {
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  MPI_Barrier(MPI_COMM_WORLD);
-  return dir;
-}
-
-std::string deck(const std::string& mesh, const std::string& body, const std::string& out_dir) {
-  return "<ParameterList name=\"shellfrac\">\n" + mesh +
-         "<ParameterList name=\"Blocks\"><ParameterList name=\"shell\">"
-         "<Parameter name=\"Thickness\" type=\"double\" value=\"0.1\"/>"
-         "<Parameter name=\"Material\" type=\"string\" value=\"m\"/></ParameterList></ParameterList>\n"
-         "<ParameterList name=\"Materials\"><ParameterList name=\"m\">"
-         "<Parameter name=\"Density\" type=\"double\" value=\"1.0\"/>"
-         "<Parameter name=\"Young's Modulus\" type=\"double\" value=\"2.1e6\"/>"
-         "<Parameter name=\"Poisson's Ratio\" type=\"double\" value=\"0.3\"/></ParameterList></ParameterList>\n" +
-         body + "<ParameterList name=\"Output\"><Parameter name=\"Directory\" type=\"string\" value=\"" + out_dir +
-         "\"/><Parameter name=\"Probes\" type=\"Array(string)\" value=\"{y_max}\"/></ParameterList>\n"
-         "</ParameterList>\n";
-}
 
 std::string rectangle(int nx, int ny) {
   return "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"Rectangle\"/>"
@@ -63,36 +37,6 @@ const std::string cantilever_conditions =
     "<ParameterList name=\"Initial Conditions\"><ParameterList name=\"kick\">"
     "<Parameter name=\"Elements\" type=\"string\" value=\"all\"/>"
     "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{0.0, 0.0, 1.0}\"/></ParameterList></ParameterList>\n";
-
-void write_file(const std::string& path, const std::string& text) {
-  if (parallel::rank() == 0) std::ofstream(path) << text;
-  MPI_Barrier(MPI_COMM_WORLD);
-}
-
-/// History CSV as rows of numbers (header dropped), with the header returned separately.
-std::vector<std::vector<double>> read_history(const std::string& path, std::vector<std::string>& header) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  header.clear();
-  std::stringstream hs(line);
-  for (std::string h; std::getline(hs, h, ',');) header.push_back(h);
-  std::vector<std::vector<double>> rows;
-  while (std::getline(in, line)) {
-    std::vector<double> row;
-    std::stringstream ls(line);
-    for (std::string v; std::getline(ls, v, ',');) row.push_back(std::stod(v));
-    rows.push_back(row);
-  }
-  return rows;
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 }  // namespace
 
@@ -177,13 +121,7 @@ TEST(Dynamics, CantileverPlateFirstFrequencyAndEnergy) {
   const auto rows = read_history(sim.history_path(), header);
   ASSERT_EQ(header[10], "y_max_displ_z");
   // Mean-free tip deflection; period from the upward zero crossings (linear interpolation).
-  double mean = 0;
-  for (const auto& r : rows) mean += r[10] / rows.size();
-  std::vector<double> crossings;
-  for (std::size_t i = 0; i + 1 < rows.size(); ++i) {
-    const double w0 = rows[i][10] - mean, w1 = rows[i + 1][10] - mean;
-    if (w0 < 0 && w1 >= 0) crossings.push_back(rows[i][1] - w0 * (rows[i + 1][1] - rows[i][1]) / (w1 - w0));
-  }
+  const auto crossings = upward_crossings(rows, 10);
   ASSERT_GE(crossings.size(), 3u);
   const double period = (crossings.back() - crossings.front()) / (crossings.size() - 1);
   const double frequency = 1.0 / period;

@@ -1,6 +1,9 @@
 #include "shellfrac/solver/dynamics_params.hpp"
 
 #include <Teuchos_Array.hpp>
+#include <Teuchos_Tuple.hpp>
+#include <algorithm>
+#include <cmath>
 
 #include "shellfrac/core/error.hpp"
 
@@ -33,6 +36,9 @@ Teuchos::RCP<const Teuchos::ParameterList> TimeParams::valid_parameters() {
   pl->set("Output Interval", 0.0, "Time between Exodus outputs [time]; 0 = first and last step only",
           params::non_negative_double());
   pl->set("History Interval", 1, "Steps between rows of the history CSV", params::int_range(1, 1 << 30));
+  pl->set("Mass Damping", 0.0, "alpha of a mass-proportional damping force alpha m v [1/time], for dynamic relaxation "
+                               "to static states; 0 = undamped",
+          params::non_negative_double());
   return pl;
 }
 
@@ -46,16 +52,23 @@ TimeParams TimeParams::from_parameters(Teuchos::ParameterList& pl, const params:
   t.rotary_inertia_scale = pl.get<double>("Rotary Inertia Scale");
   t.output_interval = pl.get<double>("Output Interval");
   t.history_interval = pl.get<int>("History Interval");
+  t.mass_damping = pl.get<double>("Mass Damping");
   return t;
 }
 
 Teuchos::RCP<const Teuchos::ParameterList> BoundaryCondition::valid_parameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("<condition name>"));
   params::set_choice(*pl, "Type", "Clamped",
-                     "Clamped: positions and directors fixed; Simply Supported: positions fixed, directors free "
-                     "(math.md §10.1)",
-                     {"Clamped", "Simply Supported"});
+                     "Clamped: positions and directors fixed; Simply Supported: positions fixed, directors free; "
+                     "Symmetry: no motion along Normal and the director stays in the plane; Prescribed Velocity: "
+                     "velocity ramped smoothly to Velocity over Ramp Time, directors clamped (math.md §10.1-10.2)",
+                     {"Clamped", "Simply Supported", "Symmetry", "Prescribed Velocity"});
   pl->set("Node Set", "x_min", "Name of a node set of the mesh");
+  pl->set("Normal", Teuchos::Array<double>(Teuchos::tuple<double>(1.0, 0.0, 0.0)), "Symmetry: normal of the symmetry plane {nx, ny, nz}");
+  pl->set("Velocity", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0, 0.0)),
+          "Prescribed Velocity: final velocity {vx, vy, vz} [length/time]");
+  pl->set("Ramp Time", 0.0, "Prescribed Velocity: duration of the cosine ramp from 0 to Velocity [time]",
+          params::non_negative_double());
   return pl;
 }
 
@@ -64,8 +77,24 @@ BoundaryCondition BoundaryCondition::from_parameters(const std::string& name, Te
   params::validate(pl, *valid_parameters(), ctx);
   BoundaryCondition bc;
   bc.name = name;
-  bc.type = pl.get<std::string>("Type") == "Clamped" ? Type::Clamped : Type::SimplySupported;
+  const std::string type = pl.get<std::string>("Type");
+  bc.type = type == "Clamped"            ? Type::Clamped
+            : type == "Simply Supported" ? Type::SimplySupported
+            : type == "Symmetry"         ? Type::Symmetry
+                                         : Type::PrescribedVelocity;
   bc.node_set = pl.get<std::string>("Node Set");
+  const auto vec3 = [&](const char* name) {
+    const auto v = pl.get<Teuchos::Array<double>>(name);
+    SHELLFRAC_INPUT_REQUIRE(v.size() == 3, ctx.file << ": '" << ctx.path << "->" << name << "' must have 3 components");
+    return Vec3{v[0], v[1], v[2]};
+  };
+  bc.normal = vec3("Normal");
+  const double n = std::sqrt(bc.normal[0] * bc.normal[0] + bc.normal[1] * bc.normal[1] + bc.normal[2] * bc.normal[2]);
+  SHELLFRAC_INPUT_REQUIRE(bc.type != Type::Symmetry || n > 0, ctx.file << ": '" << ctx.path << "->Normal' is zero");
+  if (n > 0)
+    for (double& c : bc.normal) c /= n;
+  bc.velocity = vec3("Velocity");
+  bc.ramp_time = pl.get<double>("Ramp Time");
   return bc;
 }
 
@@ -88,6 +117,64 @@ InitialVelocity InitialVelocity::from_parameters(const std::string& name, Teucho
                                                   << v.size());
   iv.velocity = {v[0], v[1], v[2]};
   return iv;
+}
+
+double Load::pressure_at(double t) const {
+  switch (function) {
+    case Function::Constant: return pressure;
+    case Function::Exponential: return pressure * std::exp(-t / decay_time) * (1 - t / decay_time);
+    case Function::Table: {
+      if (t <= times.front()) return values.front();
+      if (t >= times.back()) return values.back();
+      const auto i = std::upper_bound(times.begin(), times.end(), t) - times.begin();
+      const double w = (t - times[i - 1]) / (times[i] - times[i - 1]);
+      return (1 - w) * values[i - 1] + w * values[i];
+    }
+  }
+  return 0;
+}
+
+Teuchos::RCP<const Teuchos::ParameterList> Load::valid_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("<load name>"));
+  params::set_choice(*pl, "Type", "Pressure",
+                     "Pressure: follower pressure normal to the current mid-surface (along G1 x G2 of each element; "
+                     "math.md §10.3); Gravity: uniform body acceleration on the lumped masses",
+                     {"Pressure", "Gravity"});
+  pl->set("Elements", "all", "Element set or block carrying the load; 'all' for every element");
+  params::set_choice(*pl, "Function", "Constant",
+                     "Pressure history: Constant p0; Exponential p0 exp(-t/t_p)(1 - t/t_p) (paper §6.5); Table",
+                     {"Constant", "Exponential", "Table"});
+  pl->set("Pressure", 0.0, "p0 [force/length^2]");
+  pl->set("Decay Time", 1.0, "t_p of the Exponential function [time]", params::positive_double());
+  pl->set("Times", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 1.0)), "Table: increasing times [time]");
+  pl->set("Values", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0)), "Table: pressures at Times [force/length^2]");
+  pl->set("Acceleration", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0, 0.0)), "Gravity: body acceleration {gx, gy, gz}");
+  return pl;
+}
+
+Load Load::from_parameters(const std::string& name, Teuchos::ParameterList& pl, const params::Context& ctx) {
+  params::validate(pl, *valid_parameters(), ctx);
+  Load l;
+  l.name = name;
+  l.type = pl.get<std::string>("Type") == "Gravity" ? Type::Gravity : Type::Pressure;
+  l.elements = pl.get<std::string>("Elements");
+  const std::string f = pl.get<std::string>("Function");
+  l.function = f == "Exponential" ? Function::Exponential : f == "Table" ? Function::Table : Function::Constant;
+  l.pressure = pl.get<double>("Pressure");
+  l.decay_time = pl.get<double>("Decay Time");
+  const auto times = pl.get<Teuchos::Array<double>>("Times"), values = pl.get<Teuchos::Array<double>>("Values");
+  l.times.assign(times.begin(), times.end());
+  l.values.assign(values.begin(), values.end());
+  if (l.function == Function::Table) {
+    SHELLFRAC_INPUT_REQUIRE(!l.times.empty() && l.times.size() == l.values.size(),
+                            ctx.file << ": '" << ctx.path << "': Times and Values must have the same, non-zero length");
+    for (std::size_t i = 1; i < l.times.size(); ++i)
+      SHELLFRAC_INPUT_REQUIRE(l.times[i] > l.times[i - 1], ctx.file << ": '" << ctx.path << "->Times' must increase");
+  }
+  const auto g = pl.get<Teuchos::Array<double>>("Acceleration");
+  SHELLFRAC_INPUT_REQUIRE(g.size() == 3, ctx.file << ": '" << ctx.path << "->Acceleration' must have 3 components");
+  l.acceleration = {g[0], g[1], g[2]};
+  return l;
 }
 
 }  // namespace shellfrac::solver

@@ -26,16 +26,21 @@ struct TimeParams {
   double rotary_inertia_scale = 1.0;  ///< s_I >= 1 scales the rotary inertia rho h^3/12 (mass scaling)
   double output_interval = 0.0;  ///< time between Exodus outputs; 0 = first and last step only
   int history_interval = 1;      ///< steps between history rows
+  double mass_damping = 0.0;     ///< alpha of the damping force alpha m v (dynamic relaxation); 0 = none
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
   static TimeParams from_parameters(Teuchos::ParameterList& pl, const params::Context& ctx);
 };
 
-/// One entry of "Boundary Conditions": a condition on every DG copy of the nodes of a node set (math.md §10.1).
+/// One entry of "Boundary Conditions": a condition on every DG copy of the nodes of a node set (math.md §10.1,
+/// §10.2).
 struct BoundaryCondition {
-  enum class Type { Clamped, SimplySupported };
+  enum class Type { Clamped, SimplySupported, Symmetry, PrescribedVelocity };
   std::string name;
   Type type = Type::Clamped;
   std::string node_set;
+  Vec3 normal{0, 0, 1};    ///< Symmetry: unit normal of the symmetry plane
+  Vec3 velocity{0, 0, 0};  ///< Prescribed Velocity: final velocity V0 (directors clamped on the set)
+  double ramp_time = 0;    ///< Prescribed Velocity: cosine ramp duration t_r (0 = applied at once)
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
   static BoundaryCondition from_parameters(const std::string& name, Teuchos::ParameterList& pl,
                                            const params::Context& ctx);
@@ -49,6 +54,24 @@ struct InitialVelocity {
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
   static InitialVelocity from_parameters(const std::string& name, Teuchos::ParameterList& pl,
                                          const params::Context& ctx);
+};
+
+/// One entry of "Loads" (math.md §10.3).
+struct Load {
+  enum class Type { Pressure, Gravity };
+  enum class Function { Constant, Exponential, Table };
+  std::string name;
+  Type type = Type::Pressure;
+  std::string elements;         ///< element set or block name, or "all"
+  Function function = Function::Constant;
+  double pressure = 0;          ///< p0 [force/length^2]; positive along the element normal G1 x G2
+  double decay_time = 0;        ///< t_p of p(t) = p0 exp(-t/t_p)(1 - t/t_p) (paper §6.5)
+  std::vector<double> times, values;  ///< Table: p(t) by linear interpolation, constant outside
+  Vec3 acceleration{0, 0, 0};   ///< Gravity: body acceleration [length/time^2]
+  /// p(t) for a Pressure load.
+  double pressure_at(double t) const;
+  static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
+  static Load from_parameters(const std::string& name, Teuchos::ParameterList& pl, const params::Context& ctx);
 };
 
 }  // namespace shellfrac::solver

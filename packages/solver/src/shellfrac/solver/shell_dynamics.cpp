@@ -28,6 +28,17 @@ constexpr int nstate = nx + nt;   // columns of the ghost-exchanged state
 constexpr int nflux_edge = 15;    // lifting flux per edge: 3 position nodes x 3 + 2 director nodes x 3
 constexpr int nflux = 3 * nflux_edge;
 using exec = dist::execution_space;
+/// Sum of values contributed by all ranks, in increasing id order (bitwise independent of the rank count).
+double ordered_sum(const std::vector<GlobalId>& ids, const std::vector<double>& vals, MPI_Comm comm) {
+  const auto all_ids = parallel::all_gather(ids, comm);
+  const auto all_vals = parallel::all_gather(vals, comm);
+  std::vector<std::size_t> order(all_ids.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return all_ids[p] < all_ids[q]; });
+  double sum = 0;
+  for (std::size_t i : order) sum += all_vals[i];
+  return sum;
+}
 }  // namespace
 
 struct ShellDynamics::Impl {
@@ -42,7 +53,14 @@ struct ShellDynamics::Impl {
   std::vector<double> X;                        // overlap reference positions [nov*18]
   std::vector<double> x, t;                     // overlap current positions, directors
   std::vector<double> v, a, Lam, Tdot, Tddot;   // owned
-  std::vector<char> fixed_x, fixed_t;           // owned: per DG position node / director node
+  std::vector<char> fixed_x, fixed_t;           // owned: per DG position node / director node: clamped/supported
+  std::vector<int> presc;                       // owned position node: index of its Prescribed Velocity BC, or -1
+  std::vector<std::vector<Vec3>> sym_x, sym_t;  // owned position / director node: symmetry-plane normals
+  std::vector<std::uint32_t> bc_mask;           // owned position node: bit b set if BC b acts on it
+  std::vector<double> fext, fext_old, react, react_old, x_old;  // owned: loads, reactions, previous positions
+  std::vector<double> gravity_force;            // owned: constant lumped gravity loads
+  std::vector<std::vector<LocalId>> pressure_elements;  // per load: owned elements carrying it
+  std::vector<double> work_ext, work_react, dissipated;  // owned element accounts
   std::vector<double> f, g, energy_e;           // owned: forces, spatial director moments, strain energy
   std::vector<double> flux;                     // overlap: lifting fluxes written by each element for its neighbours
   // interfaces (all local ones)
@@ -59,7 +77,30 @@ struct ShellDynamics::Impl {
   void sync_state();
   void compute_forces();
   void check_finite() const;
+  void external_forces(double t);
+  Vec3 prescribed_displacement(int bc, double t) const;
+  Vec3 prescribed_velocity(int bc, double t) const;
+  Vec3 prescribed_acceleration(int bc, double t) const;
 };
+
+// Cosine velocity ramp with its exact displacement integral (math.md §10.2):
+// r(t) = (1 - cos(pi t/t_r))/2 for t < t_r, 1 afterwards.
+Vec3 ShellDynamics::Impl::prescribed_velocity(int bc, double t) const {
+  const auto& b = setup.boundary_conditions[bc];
+  const double tr = b.ramp_time, r = (tr > 0 && t < tr) ? 0.5 * (1 - std::cos(M_PI * t / tr)) : 1.0;
+  return {r * b.velocity[0], r * b.velocity[1], r * b.velocity[2]};
+}
+Vec3 ShellDynamics::Impl::prescribed_displacement(int bc, double t) const {
+  const auto& b = setup.boundary_conditions[bc];
+  const double tr = b.ramp_time;
+  const double u = (tr > 0 && t < tr) ? 0.5 * t - tr / (2 * M_PI) * std::sin(M_PI * t / tr) : t - 0.5 * tr;
+  return {u * b.velocity[0], u * b.velocity[1], u * b.velocity[2]};
+}
+Vec3 ShellDynamics::Impl::prescribed_acceleration(int bc, double t) const {
+  const auto& b = setup.boundary_conditions[bc];
+  const double tr = b.ramp_time, r = (tr > 0 && t < tr) ? M_PI / (2 * tr) * std::sin(M_PI * t / tr) : 0.0;
+  return {r * b.velocity[0], r * b.velocity[1], r * b.velocity[2]};
+}
 
 ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedMesh& d, const DynamicsSetup& s)
     : dm(d), setup(s), no(d.num_owned()), nov(d.num_overlap()) {
@@ -149,9 +190,12 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
     if (fc.minus < no) incident[fc.minus].push_back({i, 0});
     if (fc.plus < no) incident[fc.plus].push_back({i, 1});
   }
-  // Boundary conditions on every DG copy of the nodes of a node set.
-  fixed_x.assign(no * 6, 0), fixed_t.assign(no * 3, 0);
-  for (const auto& bc : setup.boundary_conditions) {
+  // Boundary conditions on every DG copy of the nodes of a node set (math.md §10.1-10.2).
+  fixed_x.assign(no * 6, 0), fixed_t.assign(no * 3, 0), presc.assign(no * 6, -1);
+  sym_x.assign(no * 6, {}), sym_t.assign(no * 3, {}), bc_mask.assign(no * 6, 0);
+  SHELLFRAC_INPUT_REQUIRE(setup.boundary_conditions.size() <= 32, file << ": at most 32 boundary conditions");
+  for (std::size_t ib = 0; ib < setup.boundary_conditions.size(); ++ib) {
+    const auto& bc = setup.boundary_conditions[ib];
     const auto it = std::find_if(mesh.node_sets.begin(), mesh.node_sets.end(),
                                  [&](const auto& ns) { return ns.name == bc.node_set; });
     std::string names;
@@ -164,10 +208,65 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
     for (LocalId le = 0; le < no; ++le)
       for (int A = 0; A < 6; ++A) {
         if (!member[dm.mesh_node(le, A)]) continue;
-        fixed_x[le * 6 + A] = 1;
-        if (A < 3 && bc.type == BoundaryCondition::Type::Clamped) fixed_t[le * 3 + A] = 1;
+        const int i = le * 6 + A;
+        bc_mask[i] |= 1u << ib;
+        using T = BoundaryCondition::Type;
+        switch (bc.type) {
+          case T::Clamped:
+            fixed_x[i] = 1;
+            if (A < 3) fixed_t[le * 3 + A] = 1;
+            break;
+          case T::SimplySupported: fixed_x[i] = 1; break;
+          case T::Symmetry:
+            sym_x[i].push_back(bc.normal);
+            if (A < 3) sym_t[le * 3 + A].push_back(bc.normal);
+            break;
+          case T::PrescribedVelocity:
+            presc[i] = static_cast<int>(ib);
+            if (A < 3) fixed_t[le * 3 + A] = 1;
+            break;
+        }
       }
   }
+  // A clamped/supported node is fixed whatever else acts on it.
+  for (LocalId i = 0; i < no * 6; ++i)
+    if (fixed_x[i]) presc[i] = -1, sym_x[i].clear();
+  // Loads: element lists of pressure loads, lumped gravity forces (constant).
+  const auto element_members = [&](const std::string& what, const std::string& name) {
+    std::vector<char> member(mesh.num_elements(), 0);
+    bool found = name == "all";
+    if (found) std::fill(member.begin(), member.end(), 1);
+    for (const auto& es : mesh.element_sets)
+      if (es.name == name) {
+        found = true;
+        for (GlobalId e : es.elements) member[e] = 1;
+      }
+    for (std::size_t bl = 0; bl < mesh.blocks.size(); ++bl)
+      if (mesh.blocks[bl].name == name) {
+        found = true;
+        for (GlobalId e = 0; e < mesh.num_elements(); ++e)
+          if (mesh.element_block[e] == static_cast<int>(bl)) member[e] = 1;
+      }
+    SHELLFRAC_INPUT_REQUIRE(found, file << ": " << what << " names '" << name
+                                        << "', which is neither 'all' nor an element set or block of the mesh");
+    return member;
+  };
+  gravity_force.assign(no * nx, 0.0);
+  for (const auto& load : setup.loads) {
+    const auto member = element_members("load '" + load.name + "'", load.elements);
+    pressure_elements.emplace_back();
+    for (LocalId le = 0; le < no; ++le) {
+      if (!member[dm.element_gid(le)]) continue;
+      if (load.type == Load::Type::Pressure) {
+        pressure_elements.back().push_back(le);
+      } else {
+        for (int A = 0; A < 6; ++A)
+          for (int c = 0; c < 3; ++c) gravity_force[le * nx + A * 3 + c] += mass[le * 6 + A] * load.acceleration[c];
+      }
+    }
+  }
+  fext.assign(no * nx, 0.0), react.assign(no * nx, 0.0), x_old.assign(no * nx, 0.0);
+  work_ext.assign(no, 0.0), work_react.assign(no, 0.0), dissipated.assign(no, 0.0);
   // Initial velocities on every DG copy of the nodes of the listed elements (no spurious initial jumps).
   v.assign(no * nx, 0.0);
   for (const auto& iv : setup.initial_velocities) {
@@ -193,8 +292,14 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
                                         << "', which is neither 'all' nor an element set or block of the mesh");
     for (LocalId le = 0; le < no; ++le)
       for (int A = 0; A < 6; ++A)
-        if (member[dm.mesh_node(le, A)] && !fixed_x[le * 6 + A])
-          for (int c = 0; c < 3; ++c) v[le * nx + A * 3 + c] = iv.velocity[c];
+        if (member[dm.mesh_node(le, A)] && !fixed_x[le * 6 + A] && presc[le * 6 + A] < 0) {
+          Vec3 vel = iv.velocity;
+          for (const auto& n : sym_x[le * 6 + A]) {  // no velocity across a symmetry plane
+            const double vn = vel[0] * n[0] + vel[1] * n[1] + vel[2] * n[2];
+            for (int c = 0; c < 3; ++c) vel[c] -= vn * n[c];
+          }
+          for (int c = 0; c < 3; ++c) v[le * nx + A * 3 + c] = vel[c];
+        }
   }
   // Director state: rotations from Rodrigues (paper A.1), at rest.
   Lam.resize(no * 27), Tdot.assign(no * 6, 0.0), Tddot.assign(no * 6, 0.0), a.assign(no * nx, 0.0);
@@ -211,19 +316,66 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
   state_ov = Teuchos::rcp(new dist::multivector_type(maps.overlap, nstate));
   flux_own = Teuchos::rcp(new dist::multivector_type(maps.owned, nflux));
   flux_ov = Teuchos::rcp(new dist::multivector_type(maps.overlap, nflux));
+  // Prescribed velocities at t = 0.
+  for (LocalId i = 0; i < no * 6; ++i)
+    if (presc[i] >= 0) {
+      const Vec3 pv = prescribed_velocity(presc[i], 0.0);
+      for (int c = 0; c < 3; ++c) v[i * 3 + c] = pv[c];
+    }
   // Start-up: forces and accelerations at t = 0 (math.md §7.4).
   sync_state();
   compute_forces();
+  external_forces(0.0);
   for (LocalId le = 0; le < no; ++le) {
-    for (int A = 0; A < 6; ++A)
-      for (int c = 0; c < 3; ++c)
-        a[le * nx + A * 3 + c] = fixed_x[le * 6 + A] ? 0.0 : -f[le * nx + A * 3 + c] / mass[le * 6 + A];
+    for (int A = 0; A < 6; ++A) {
+      const int i = le * 6 + A;
+      Vec3 acc{0, 0, 0};
+      if (presc[i] >= 0) {
+        acc = prescribed_acceleration(presc[i], 0.0);
+      } else if (!fixed_x[i]) {
+        for (int c = 0; c < 3; ++c) acc[c] = (fext[i * 3 + c] - f[i * 3 + c]) / mass[i];
+        for (const auto& n : sym_x[i]) {
+          const double an = acc[0] * n[0] + acc[1] * n[1] + acc[2] * n[2];
+          for (int c = 0; c < 3; ++c) acc[c] -= an * n[c];
+        }
+      }
+      for (int c = 0; c < 3; ++c) {
+        a[i * 3 + c] = acc[c];
+        react[i * 3 + c] = (fixed_x[i] || presc[i] >= 0) ? mass[i] * acc[c] - fext[i * 3 + c] + f[i * 3 + c] : 0.0;
+      }
+    }
     for (int b = 0; b < 3; ++b) {
       double L[3][3], fT[2];
       for (int i = 0; i < 9; ++i) L[i / 3][i % 3] = Lam[le * 27 + b * 9 + i];
       disc::lambda_bar_transpose_times(L, &g[le * nt + b * 3], fT);
+      for (const auto& n : sym_t[le * 3 + b]) {
+        double d[2];
+        disc::lambda_bar_transpose_times(L, n.data(), d);
+        disc::project_out(fT, d);
+      }
       for (int c = 0; c < 2; ++c) Tddot[le * 6 + b * 2 + c] = fixed_t[le * 3 + b] ? 0.0 : -fT[c] / inertia[le * 3 + b];
     }
+  }
+}
+
+void ShellDynamics::Impl::external_forces(double t) {
+  // Constant gravity plus follower pressures on the current mid-surface (math.md §10.3):
+  // f_ext^A = p(t) sum_q w_q N^A(xi_q) (dphi/dxi1 x dphi/dxi2)(xi_q), ordinary element derivatives.
+  fext = gravity_force;
+  for (std::size_t l = 0; l < setup.loads.size(); ++l) {
+    const auto& load = setup.loads[l];
+    if (load.type != Load::Type::Pressure) continue;
+    const double p = load.pressure_at(t);
+    for (LocalId le : pressure_elements[l])
+      for (int q = 0; q < disc::tri6_rule.num_points; ++q) {
+        double N[6], dN[6][2], g1[3] = {0, 0, 0}, g2[3] = {0, 0, 0}, n[3];
+        disc::p2_shape(disc::tri6_rule.xi[q][0], disc::tri6_rule.xi[q][1], N, dN);
+        for (int A = 0; A < 6; ++A)
+          for (int c = 0; c < 3; ++c) g1[c] += dN[A][0] * x[le * nx + A * 3 + c], g2[c] += dN[A][1] * x[le * nx + A * 3 + c];
+        disc::cross3(g1, g2, n);
+        for (int A = 0; A < 6; ++A)
+          for (int c = 0; c < 3; ++c) fext[le * nx + A * 3 + c] += p * disc::tri6_rule.w[q] * N[A] * n[c];
+      }
   }
 }
 
@@ -409,31 +561,54 @@ long ShellDynamics::step_count() const { return impl_->step; }
 
 void ShellDynamics::step() {
   Impl& s = *impl_;
-  const double dt = s.dt;
+  const double dt = s.dt, t1 = s.time + dt, alpha = s.setup.time.mass_damping;
   std::vector<double> Tdot_pre(s.no * 6);
   auto t0 = std::chrono::steady_clock::now();
+  s.x_old.assign(s.x.begin(), s.x.begin() + s.no * nx);
+  s.fext_old = s.fext, s.react_old = s.react;
+  const auto remove_normal = [](double* w, const std::vector<Vec3>& normals) {
+    for (const auto& n : normals) {
+      const double wn = w[0] * n[0] + w[1] * n[1] + w[2] * n[2];
+      for (int c = 0; c < 3; ++c) w[c] -= wn * n[c];
+    }
+  };
   // Predictor (math.md §7.4 steps 1-2): positions, then directors by the exponential map.
   for (LocalId le = 0; le < s.no; ++le) {
-    for (int A = 0; A < 6; ++A)
-      for (int c = 0; c < 3; ++c) {
-        const int i = le * nx + A * 3 + c;
-        if (s.fixed_x[le * 6 + A]) {
-          s.x[i] = s.X[i], s.v[i] = 0;
-        } else {
-          s.x[i] += dt * s.v[i] + 0.5 * dt * dt * s.a[i];  // x^{n+1} = x^n + dt v^n + dt^2/2 a^n
-          s.v[i] += 0.5 * dt * s.a[i];                      // v_pre = v^n + dt/2 a^n
+    for (int A = 0; A < 6; ++A) {
+      const int i = le * 6 + A;
+      double* x = &s.x[i * 3];
+      double* v = &s.v[i * 3];
+      if (s.fixed_x[i]) {
+        for (int c = 0; c < 3; ++c) x[c] = s.X[i * 3 + c], v[c] = 0;
+      } else if (s.presc[i] >= 0) {  // exact integral of the velocity program: no drift
+        const Vec3 u = s.prescribed_displacement(s.presc[i], t1);
+        for (int c = 0; c < 3; ++c) x[c] = s.X[i * 3 + c] + u[c];
+      } else {
+        double dx[3];
+        for (int c = 0; c < 3; ++c) {
+          dx[c] = dt * v[c] + 0.5 * dt * dt * s.a[i * 3 + c];  // x^{n+1} = x^n + dt v^n + dt^2/2 a^n
+          v[c] += 0.5 * dt * s.a[i * 3 + c];                    // v_pre = v^n + dt/2 a^n
         }
+        remove_normal(dx, s.sym_x[i]);
+        remove_normal(v, s.sym_x[i]);
+        for (int c = 0; c < 3; ++c) x[c] += dx[c];
       }
+    }
     for (int b = 0; b < 3; ++b) {
-      double dT[2];
+      double dT[2], L[3][3];
+      for (int i = 0; i < 9; ++i) L[i / 3][i % 3] = s.Lam[le * 27 + b * 9 + i];
       for (int c = 0; c < 2; ++c) {
         const int i = le * 6 + b * 2 + c;
         const bool fixed = s.fixed_t[le * 3 + b];
         dT[c] = fixed ? 0.0 : dt * s.Tdot[i] + 0.5 * dt * dt * s.Tddot[i];  // SEED eq. 47
         Tdot_pre[i] = fixed ? 0.0 : s.Tdot[i] + 0.5 * dt * s.Tddot[i];     // SEED eq. 48, gamma = 1/2
       }
-      double L[3][3];
-      for (int i = 0; i < 9; ++i) L[i / 3][i % 3] = s.Lam[le * 27 + b * 9 + i];
+      for (const auto& n : s.sym_t[le * 3 + b]) {  // keep the director in the symmetry plane (math.md §10.1)
+        double d[2];
+        disc::lambda_bar_transpose_times(L, n.data(), d);
+        disc::project_out(dT, d);
+        disc::project_out(&Tdot_pre[le * 6 + b * 2], d);
+      }
       disc::update_director(&s.t[le * nt + b * 3], L, dT, &s.t[le * nt + b * 3], L);  // Algorithm 1
       for (int i = 0; i < 9; ++i) s.Lam[le * 27 + b * 9 + i] = L[i / 3][i % 3];
     }
@@ -443,29 +618,89 @@ void ShellDynamics::step() {
   s.sync_state();
   s.compute_forces();
   t0 = std::chrono::steady_clock::now();
-  // Accelerations and corrector (steps 4-5).
+  s.external_forces(t1);
+  // Accelerations and corrector (steps 4-5); damping force alpha m v_pre.
   for (LocalId le = 0; le < s.no; ++le) {
-    for (int A = 0; A < 6; ++A)
-      for (int c = 0; c < 3; ++c) {
-        const int i = le * nx + A * 3 + c;
-        s.a[i] = s.fixed_x[le * 6 + A] ? 0.0 : -s.f[i] / s.mass[le * 6 + A];
-        s.v[i] += 0.5 * dt * s.a[i];  // v^{n+1} = v_pre + dt/2 a^{n+1}
+    double wext = 0, wreact = 0, diss = 0;
+    for (int A = 0; A < 6; ++A) {
+      const int i = le * 6 + A;
+      double* v = &s.v[i * 3];
+      double* acc = &s.a[i * 3];
+      const bool constrained = s.fixed_x[i] || s.presc[i] >= 0;
+      if (s.fixed_x[i]) {
+        acc[0] = acc[1] = acc[2] = 0;
+      } else if (s.presc[i] >= 0) {
+        const Vec3 pa = s.prescribed_acceleration(s.presc[i], t1), pv = s.prescribed_velocity(s.presc[i], t1);
+        for (int c = 0; c < 3; ++c) acc[c] = pa[c], v[c] = pv[c];
+      } else {
+        for (int c = 0; c < 3; ++c) {
+          diss += dt * alpha * s.mass[i] * v[c] * v[c];
+          acc[c] = (s.fext[i * 3 + c] - s.f[i * 3 + c] - alpha * s.mass[i] * v[c]) / s.mass[i];
+        }
+        remove_normal(acc, s.sym_x[i]);
+        for (int c = 0; c < 3; ++c) v[c] += 0.5 * dt * acc[c];  // v^{n+1} = v_pre + dt/2 a^{n+1}
       }
+      for (int c = 0; c < 3; ++c) {
+        const int j = i * 3 + c;
+        // Reaction R = m a - f_ext + f on constrained nodes (math.md §9.7).
+        s.react[j] = constrained ? s.mass[i] * acc[c] - s.fext[j] + s.f[j] : 0.0;
+        const double dx = s.x[j] - s.x_old[j];
+        wext += 0.5 * (s.fext_old[j] + s.fext[j]) * dx;
+        wreact += 0.5 * (s.react_old[j] + s.react[j]) * dx;
+      }
+    }
     for (int b = 0; b < 3; ++b) {
       double L[3][3], fT[2];
       for (int i = 0; i < 9; ++i) L[i / 3][i % 3] = s.Lam[le * 27 + b * 9 + i];
       disc::lambda_bar_transpose_times(L, &s.g[le * nt + b * 3], fT);  // f_T = Lambda-bar^T g
       for (int c = 0; c < 2; ++c) {
         const int i = le * 6 + b * 2 + c;
+        diss += dt * alpha * s.inertia[le * 3 + b] * Tdot_pre[i] * Tdot_pre[i];
+        fT[c] += alpha * s.inertia[le * 3 + b] * Tdot_pre[i];
+      }
+      for (const auto& n : s.sym_t[le * 3 + b]) {
+        double d[2];
+        disc::lambda_bar_transpose_times(L, n.data(), d);
+        disc::project_out(fT, d);
+      }
+      for (int c = 0; c < 2; ++c) {
+        const int i = le * 6 + b * 2 + c;
         s.Tddot[i] = s.fixed_t[le * 3 + b] ? 0.0 : -fT[c] / s.inertia[le * 3 + b];  // SEED eq. 49
         s.Tdot[i] = Tdot_pre[i] + 0.5 * dt * s.Tddot[i];                            // SEED eq. 50, gamma = 1/2
       }
     }
+    s.work_ext[le] += wext, s.work_react[le] += wreact, s.dissipated[le] += diss;
   }
-  s.time += dt;
+  s.time = t1;
   ++s.step;
   s.check_finite();
   s.times.update += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::vector<double> ShellDynamics::reactions() const {
+  const Impl& s = *impl_;
+  std::vector<double> out;
+  for (std::size_t ib = 0; ib < s.setup.boundary_conditions.size(); ++ib) {
+    std::vector<GlobalId> ids;
+    std::vector<std::vector<double>> vals(3);
+    for (LocalId le = 0; le < s.no; ++le)
+      for (int A = 0; A < 6; ++A) {
+        const int i = le * 6 + A;
+        if (!(s.bc_mask[i] & (1u << ib))) continue;
+        ids.push_back(s.dm.dg_node_gid(le, A));
+        // Symmetry nodes: the reaction is the normal force that keeps them on the plane.
+        for (int c = 0; c < 3; ++c) {
+          double r = s.react[i * 3 + c];
+          if (!s.fixed_x[i] && s.presc[i] < 0)
+            for (const auto& n : s.sym_x[i])
+              r += n[c] * ((s.f[i * 3] - s.fext[i * 3]) * n[0] + (s.f[i * 3 + 1] - s.fext[i * 3 + 1]) * n[1] +
+                           (s.f[i * 3 + 2] - s.fext[i * 3 + 2]) * n[2]);
+          vals[c].push_back(r);
+        }
+      }
+    for (int c = 0; c < 3; ++c) out.push_back(ordered_sum(ids, vals[c], s.dm.comm()));
+  }
+  return out;
 }
 
 const PhaseTimes& ShellDynamics::phase_times() const { return impl_->times; }
@@ -482,19 +717,6 @@ double ShellDynamics::bytes_per_element() const {
   return s.no > 0 ? bytes / s.no : 0.0;
 }
 
-namespace {
-/// Sum of values contributed by all ranks, in increasing id order (bitwise independent of the rank count).
-double ordered_sum(const std::vector<GlobalId>& ids, const std::vector<double>& vals, MPI_Comm comm) {
-  const auto all_ids = parallel::all_gather(ids, comm);
-  const auto all_vals = parallel::all_gather(vals, comm);
-  std::vector<std::size_t> order(all_ids.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return all_ids[p] < all_ids[q]; });
-  double sum = 0;
-  for (std::size_t i : order) sum += all_vals[i];
-  return sum;
-}
-}  // namespace
 
 std::vector<double> ShellDynamics::probes(const std::vector<std::vector<char>>& members) const {
   const Impl& s = *impl_;
@@ -542,6 +764,9 @@ StepRecord ShellDynamics::record() const {
   r.kinetic = ordered_sum(egid, ek, s.dm.comm());
   r.strain = ordered_sum(egid, es, s.dm.comm());
   r.penalty = ordered_sum(igid, ep, s.dm.comm());
+  r.external_work = ordered_sum(egid, std::vector<double>(s.work_ext.begin(), s.work_ext.begin() + s.no), s.dm.comm());
+  r.reaction_work = ordered_sum(egid, std::vector<double>(s.work_react.begin(), s.work_react.begin() + s.no), s.dm.comm());
+  r.damping = ordered_sum(egid, std::vector<double>(s.dissipated.begin(), s.dissipated.begin() + s.no), s.dm.comm());
   return r;
 }
 

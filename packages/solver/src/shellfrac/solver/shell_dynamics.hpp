@@ -37,6 +37,7 @@ struct DynamicsSetup {
   TimeParams time;
   std::vector<BoundaryCondition> boundary_conditions;
   std::vector<InitialVelocity> initial_velocities;
+  std::vector<Load> loads;
   std::string deck_file;  ///< for messages
 };
 
@@ -44,7 +45,10 @@ struct DynamicsSetup {
 struct StepRecord {
   long step = 0;
   double time = 0, dt = 0;
-  double kinetic = 0, strain = 0, penalty = 0, external_work = 0, balance_error = 0;
+  double kinetic = 0, strain = 0, penalty = 0;
+  double external_work = 0;   ///< work of the loads (trapezoidal rule, math.md §9.7)
+  double reaction_work = 0;   ///< work of the support reactions (prescribed motions)
+  double damping = 0;         ///< energy dissipated by mass damping
 };
 
 /// Wall time spent in each phase of the steps taken so far, on this rank [s].
@@ -79,6 +83,9 @@ class ShellDynamics {
   /// Node-set probes: for each entry of `members` (a flag per mesh node), the mean displacement (3) and
   /// velocity (3) over every DG copy of its nodes, summed in global DG-node order. Collective.
   std::vector<double> probes(const std::vector<std::vector<char>>& members) const;
+  /// Support reaction force summed over each boundary condition's DG nodes (3 per condition, in deck order),
+  /// in global DG-node order. Collective.
+  std::vector<double> reactions() const;
   /// Accumulated phase timings on this rank.
   const PhaseTimes& phase_times() const;
   /// Bytes of per-element state and reference data held on this rank, divided by the owned elements.

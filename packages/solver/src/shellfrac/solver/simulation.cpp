@@ -87,6 +87,8 @@ Teuchos::RCP<const Teuchos::ParameterList> Deck::valid_parameters() {
   bcs.set("clamped end", *BoundaryCondition::valid_parameters());
   auto& ics = pl->sublist("Initial Conditions", false, "One sublist per initial velocity, named freely");
   ics.set("initial velocity", *InitialVelocity::valid_parameters());
+  auto& loads = pl->sublist("Loads", false, "One sublist per load, named freely");
+  loads.set("pressure", *Load::valid_parameters());
   return pl;
 }
 
@@ -99,7 +101,7 @@ Deck Deck::read(const std::string& file, MPI_Comm comm) {
   // Top level: only the known sublists; user-named children of Blocks/Materials are validated one by one.
   Teuchos::ParameterList top("shellfrac");
   for (const char* name : {"Mesh", "Blocks", "Materials", "Partitioning", "Output", "Discretization",
-                           "Time Integration", "Boundary Conditions", "Initial Conditions"})
+                           "Time Integration", "Boundary Conditions", "Initial Conditions", "Loads"})
     top.sublist(name);
   params::validate(pl, top, ctx);
   for (const char* name : {"Blocks", "Materials"})
@@ -146,6 +148,11 @@ Deck Deck::read(const std::string& file, MPI_Comm comm) {
     d.initial_velocities.push_back(InitialVelocity::from_parameters(
         ics.name(it), ics.sublist(ics.name(it)), ctx / "Initial Conditions" / ics.name(it)));
   }
+  auto& loads = pl.sublist("Loads");
+  for (auto it = loads.begin(); it != loads.end(); ++it) {
+    SHELLFRAC_INPUT_REQUIRE(loads.entry(it).isList(), file << ": 'Loads->" << loads.name(it) << "' must be a sublist");
+    d.loads.push_back(Load::from_parameters(loads.name(it), loads.sublist(loads.name(it)), ctx / "Loads" / loads.name(it)));
+  }
   auto& out = pl.sublist("Output");
   params::validate(out, *OutputParams::valid_parameters(), ctx / "Output");
   d.output.base_name = out.get<std::string>("Base Name");
@@ -158,6 +165,22 @@ Deck Deck::read(const std::string& file, MPI_Comm comm) {
                             file << ": 'Output->Directory' = '" << d.output.directory << "' is not an existing directory");
   }
   return d;
+}
+
+DynamicsSetup make_dynamics_setup(const Deck& deck, const mesh::SerialMesh& mesh) {
+  DynamicsSetup setup;
+  for (const auto& b : mesh.blocks) {
+    const auto& sec = deck.blocks.at(b.name);
+    const auto& mat = deck.materials.at(sec.material);
+    setup.block_sections.push_back({mat.youngs_modulus, mat.poissons_ratio, mat.density, sec.thickness});
+  }
+  setup.discretization = deck.discretization;
+  setup.time = deck.time;
+  setup.boundary_conditions = deck.boundary_conditions;
+  setup.initial_velocities = deck.initial_velocities;
+  setup.loads = deck.loads;
+  setup.deck_file = deck.file;
+  return setup;
 }
 
 Simulation::Simulation(const std::string& deck_file, MPI_Comm comm) : comm_(comm), deck_(Deck::read(deck_file, comm)) {
@@ -189,18 +212,7 @@ Simulation::Simulation(const std::string& deck_file, MPI_Comm comm) : comm_(comm
   const auto part = dist::partition_elements(m, topo, np, *deck_.partition, comm);
   dmesh_ = std::make_unique<dist::DistributedMesh>(m, topo, part, comm);
 
-  DynamicsSetup setup;
-  for (const auto& b : m.blocks) {
-    const auto& sec = deck_.blocks.at(b.name);
-    const auto& mat = deck_.materials.at(sec.material);
-    setup.block_sections.push_back({mat.youngs_modulus, mat.poissons_ratio, mat.density, sec.thickness});
-  }
-  setup.discretization = deck_.discretization;
-  setup.time = deck_.time;
-  setup.boundary_conditions = deck_.boundary_conditions;
-  setup.initial_velocities = deck_.initial_velocities;
-  setup.deck_file = deck_.file;
-  dynamics_ = std::make_unique<ShellDynamics>(m, *dmesh_, setup);
+  dynamics_ = std::make_unique<ShellDynamics>(m, *dmesh_, make_dynamics_setup(deck_, m));
   summary_.stable_dt = dynamics_->stable_time_step();
   for (const auto& name : deck_.output.probes) {
     const auto it = std::find_if(m.node_sets.begin(), m.node_sets.end(), [&](const auto& ns) { return ns.name == name; });
@@ -267,6 +279,10 @@ RunSummary Simulation::run() {
                                       "external_work",  "energy_balance_error"};
   for (const auto& p : probe_names_)
     for (const char* q : {"_displ_x", "_displ_y", "_displ_z", "_vel_x", "_vel_y", "_vel_z"}) columns.push_back(p + q);
+  columns.push_back("reaction_work");
+  columns.push_back("damping_dissipation");
+  for (const auto& bc : deck_.boundary_conditions)
+    for (const char* q : {"_reaction_x", "_reaction_y", "_reaction_z"}) columns.push_back(bc.name + q);
   io::HistoryWriter history(history_path(), columns, comm_);
   auto& dyn = *dynamics_;
   std::vector<std::vector<Vec3>> nodal(3);
@@ -278,11 +294,13 @@ RunSummary Simulation::run() {
   const double e0 = r0.kinetic + r0.strain + r0.penalty;
   auto write_history = [&] {
     const StepRecord r = dyn.record();
-    // No external loads yet and fixed supports do no work: the total energy is conserved, so the balance
-    // error is its drift (math.md §9.7, check 1).
-    const double err = r.kinetic + r.strain + r.penalty - e0;
-    std::vector<double> row = {double(r.step), r.time, r.dt, r.kinetic, r.strain, r.penalty, 0.0, err};
+    // Energy balance (math.md §9.7): K + U_el + U_stab + D_damp - (K0 + U0) - W_ext - W_react.
+    const double err = r.kinetic + r.strain + r.penalty + r.damping - e0 - r.external_work - r.reaction_work;
+    std::vector<double> row = {double(r.step), r.time, r.dt, r.kinetic, r.strain, r.penalty, r.external_work, err};
     for (double p : dyn.probes(probe_members_)) row.push_back(p);
+    row.push_back(r.reaction_work);
+    row.push_back(r.damping);
+    for (double f : dyn.reactions()) row.push_back(f);
     history.write_row(row);
   };
   write_output();

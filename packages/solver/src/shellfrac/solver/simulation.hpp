@@ -43,6 +43,7 @@ struct Deck {
   TimeParams time;
   std::vector<BoundaryCondition> boundary_conditions;
   std::vector<InitialVelocity> initial_velocities;
+  std::vector<Load> loads;
   Teuchos::RCP<Teuchos::ParameterList> expanded;  ///< the deck with every default filled in
 
   /// The complete valid parameter tree (user-named sublists shown with one example entry), as printed by
@@ -64,6 +65,12 @@ struct RunSummary {
 
 /// A run. Construction does all the input work (collective); run() writes the outputs.
 class ShellDynamics;
+struct DynamicsSetup;  // shell_dynamics.hpp
+
+/// What ShellDynamics needs from the deck (sections by mesh block index, discretization, time, conditions),
+/// as Simulation builds it. Every block of `mesh` must have an entry in deck.blocks (Simulation checks this
+/// first). Used by the benchmark to build exactly the model of a run.
+DynamicsSetup make_dynamics_setup(const Deck& deck, const mesh::SerialMesh& mesh);
 
 class Simulation {
  public:
