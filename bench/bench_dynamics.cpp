@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "shellfrac/core/application.hpp"
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/dist/distributed_mesh.hpp"
@@ -127,16 +128,5 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   Tpetra::ScopeGuard scope(&argc, &argv);
-  const bool root = shellfrac::parallel::rank() == 0;
-  try {
-    return run(argc, argv);
-  } catch (const shellfrac::InputError& e) {
-    if (root) std::cerr << "shellfrac_bench: error: " << e.what() << "\n";
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "shellfrac_bench: internal error on rank " << shellfrac::parallel::rank() << ": " << e.what() << "\n";
-    std::fflush(stderr);
-    MPI_Abort(MPI_COMM_WORLD, 3);
-    return 3;
-  }
+  return shellfrac::run_guarded("shellfrac_bench", [&] { return run(argc, argv); });
 }

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "shellfrac/core/application.hpp"
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/solver/simulation.hpp"
@@ -108,17 +109,5 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   Tpetra::ScopeGuard scope(&argc, &argv);
-  const bool root = shellfrac::parallel::rank() == 0;
-  try {
-    return run(argc, argv);
-  } catch (const shellfrac::InputError& e) {
-    // Input errors are detected collectively: every rank has the same message and exits normally.
-    if (root) std::cerr << "shellfrac: error: " << e.what() << "\n";
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "shellfrac: internal error on rank " << shellfrac::parallel::rank() << ": " << e.what() << "\n";
-    std::fflush(stderr);
-    MPI_Abort(MPI_COMM_WORLD, 3);
-    return 3;
-  }
+  return shellfrac::run_guarded("shellfrac", [&] { return run(argc, argv); });
 }

@@ -14,11 +14,13 @@
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/meshio/exodus_mesh_io.hpp"
+#include "mesh_compare.hpp"
 
 namespace shellfrac::meshio {
 namespace {
 
 using mesh::SerialMesh;
+using test::expect_same_mesh;
 
 /// A 2 x 1 rectangle (bent out of plane: z = 0.1 * sqrt(2) * x) cut into 4 TRI3, two blocks, every kind of set.
 ///   3 ---- 4 ---- 5
@@ -67,36 +69,6 @@ SerialMesh tri6_mesh() {
   return m;
 }
 
-void expect_same_mesh(const SerialMesh& a, const SerialMesh& b) {
-  EXPECT_EQ(a.nodes_per_element, b.nodes_per_element);
-  EXPECT_EQ(a.coords, b.coords);  // exact: doubles are stored as 8-byte words
-  EXPECT_EQ(a.connectivity, b.connectivity);
-  EXPECT_EQ(a.element_block, b.element_block);
-  ASSERT_EQ(a.blocks.size(), b.blocks.size());
-  for (std::size_t k = 0; k < a.blocks.size(); ++k) {
-    EXPECT_EQ(a.blocks[k].name, b.blocks[k].name);
-    EXPECT_EQ(a.blocks[k].id, b.blocks[k].id);
-  }
-  ASSERT_EQ(a.node_sets.size(), b.node_sets.size());
-  for (std::size_t k = 0; k < a.node_sets.size(); ++k) {
-    EXPECT_EQ(a.node_sets[k].name, b.node_sets[k].name);
-    EXPECT_EQ(a.node_sets[k].id, b.node_sets[k].id);
-    EXPECT_EQ(a.node_sets[k].nodes, b.node_sets[k].nodes);
-  }
-  ASSERT_EQ(a.side_sets.size(), b.side_sets.size());
-  for (std::size_t k = 0; k < a.side_sets.size(); ++k) {
-    EXPECT_EQ(a.side_sets[k].name, b.side_sets[k].name);
-    EXPECT_EQ(a.side_sets[k].id, b.side_sets[k].id);
-    EXPECT_EQ(a.side_sets[k].elements, b.side_sets[k].elements);
-    EXPECT_EQ(a.side_sets[k].local_edges, b.side_sets[k].local_edges);
-  }
-  ASSERT_EQ(a.element_sets.size(), b.element_sets.size());
-  for (std::size_t k = 0; k < a.element_sets.size(); ++k) {
-    EXPECT_EQ(a.element_sets[k].name, b.element_sets[k].name);
-    EXPECT_EQ(a.element_sets[k].id, b.element_sets[k].id);
-    EXPECT_EQ(a.element_sets[k].elements, b.element_sets[k].elements);
-  }
-}
 
 /// The message of the InputError thrown by f (fails the test if none is thrown).
 template <class F>

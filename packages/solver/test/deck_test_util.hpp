@@ -146,6 +146,17 @@ inline double peak_frequency(const std::vector<std::vector<double>>& rows, std::
   return 0.5 * (lo + hi);
 }
 
+/// The Mesh sublist of a Rectangle generator [0, lx] x [0, ly], nx x ny cells, Alternating diagonals, block "shell".
+inline std::string rectangle_mesh(double lx, double ly, int nx, int ny) {
+  return "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"Rectangle\"/>"
+         "<ParameterList name=\"Rectangle\"><Parameter name=\"Length\" type=\"double\" value=\"" + xml_double(lx) +
+         "\"/><Parameter name=\"Width\" type=\"double\" value=\"" + xml_double(ly) + "\"/>"
+         "<Parameter name=\"Elements Along Length\" type=\"int\" value=\"" + std::to_string(nx) + "\"/>"
+         "<Parameter name=\"Elements Along Width\" type=\"int\" value=\"" + std::to_string(ny) + "\"/>"
+         "<Parameter name=\"Diagonal Pattern\" type=\"string\" value=\"Alternating\"/>"
+         "<Parameter name=\"Block Name\" type=\"string\" value=\"shell\"/></ParameterList></ParameterList>\n";
+}
+
 inline std::string slurp(const std::string& path) {
   std::ifstream in(path);
   std::stringstream ss;

@@ -21,14 +21,7 @@ using namespace shellfrac::test;
 
 namespace {
 
-std::string rectangle(int nx, int ny) {
-  return "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"Rectangle\"/>"
-         "<ParameterList name=\"Rectangle\"><Parameter name=\"Length\" type=\"double\" value=\"1.0\"/>"
-         "<Parameter name=\"Width\" type=\"double\" value=\"1.5\"/>"
-         "<Parameter name=\"Elements Along Length\" type=\"int\" value=\"" + std::to_string(nx) + "\"/>"
-         "<Parameter name=\"Elements Along Width\" type=\"int\" value=\"" + std::to_string(ny) + "\"/>"
-         "<Parameter name=\"Diagonal Pattern\" type=\"string\" value=\"Alternating\"/></ParameterList></ParameterList>\n";
-}
+std::string rectangle(int nx, int ny) { return rectangle_mesh(1.0, 1.5, nx, ny); }
 
 const std::string cantilever_conditions =
     "<ParameterList name=\"Boundary Conditions\"><ParameterList name=\"root\">"

@@ -18,16 +18,6 @@ using namespace shellfrac;
 using namespace shellfrac::test;
 
 namespace {
-std::string rectangle(double lx, double ly, int nx, int ny) {
-  return "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"Rectangle\"/>"
-         "<ParameterList name=\"Rectangle\"><Parameter name=\"Length\" type=\"double\" value=\"" + xml_double(lx) +
-         "\"/><Parameter name=\"Width\" type=\"double\" value=\"" + xml_double(ly) + "\"/>"
-         "<Parameter name=\"Elements Along Length\" type=\"int\" value=\"" + std::to_string(nx) + "\"/>"
-         "<Parameter name=\"Elements Along Width\" type=\"int\" value=\"" + std::to_string(ny) + "\"/>"
-         "<Parameter name=\"Diagonal Pattern\" type=\"string\" value=\"Alternating\"/>"
-         "<Parameter name=\"Block Name\" type=\"string\" value=\"shell\"/></ParameterList></ParameterList>\n";
-}
-
 std::vector<std::vector<double>> run(const std::string& dir, const std::string& name, const std::string& text,
                                      std::vector<std::string>& header) {
   write_file(dir + "/" + name + ".xml", text);
@@ -49,7 +39,7 @@ TEST(Loads, PressureWorkBalancesEnergy) {
       "<Parameter name=\"Pressure\" type=\"double\" value=\"50\"/>"
       "<Parameter name=\"Decay Time\" type=\"double\" value=\"0.005\"/></ParameterList></ParameterList>\n";
   std::vector<std::string> h;
-  const auto rows = run(dir, "pressure", deck(rectangle(1.0, 1.0, 4, 4), body, dir, "{corners}"), h);
+  const auto rows = run(dir, "pressure", deck(rectangle_mesh(1.0, 1.0, 4, 4), body, dir, "{corners}"), h);
   if (parallel::rank() != 0) return;
   const auto w = column(h, "external_work"), err = column(h, "energy_balance_error");
   double wmax = 0;
@@ -76,7 +66,7 @@ TEST(Constraints, PulledStripReactionAndEnergy) {
   std::vector<std::string> hd;
   ShellSection section;
   section.poisson = 0.0;  // no lateral contraction: the strip is a one-dimensional bar exactly
-  const auto rows = run(dir, "pulled", deck(rectangle(2.0, b, 40, 4), body, dir, "{x_max}", section), hd);
+  const auto rows = run(dir, "pulled", deck(rectangle_mesh(2.0, b, 40, 4), body, dir, "{x_max}", section), hd);
   if (parallel::rank() != 0) return;
   const auto rx = column(hd, "right_reaction_x"), t = column(hd, "time"), err = column(hd, "energy_balance_error");
   const auto wr = column(hd, "reaction_work");
@@ -114,8 +104,8 @@ TEST(Constraints, SymmetryPlaneHalfModelMatchesFullModel) {
                               "<Parameter name=\"Normal\" type=\"Array(double)\" value=\"{1.0, 0.0, 0.0}\"/>"
                               "</ParameterList></ParameterList>\n";
   std::vector<std::string> hf, hh;
-  const auto full = run(dir, "full", deck(rectangle(1.0, 1.5, 8, 12), time + full_bc + kick, dir), hf);
-  const auto half = run(dir, "half", deck(rectangle(0.5, 1.5, 4, 12), time + half_bc + kick, dir), hh);
+  const auto full = run(dir, "full", deck(rectangle_mesh(1.0, 1.5, 8, 12), time + full_bc + kick, dir), hf);
+  const auto half = run(dir, "half", deck(rectangle_mesh(0.5, 1.5, 4, 12), time + half_bc + kick, dir), hh);
   if (parallel::rank() != 0) return;
   const auto cf = upward_crossings(full, column(hf, "y_max_displ_z"));
   const auto ch = upward_crossings(half, column(hh, "y_max_displ_z"));

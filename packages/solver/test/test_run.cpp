@@ -17,22 +17,14 @@
 #include "shellfrac/mesh/serial_mesh.hpp"
 #include "shellfrac/meshio/exodus_mesh_io.hpp"
 #include "shellfrac/solver/simulation.hpp"
+#include "deck_test_util.hpp"
 
 using namespace shellfrac;
+using shellfrac::test::work_dir;
+using shellfrac::test::write_file;
 namespace fs = std::filesystem;
 
 namespace {
-
-/// A per-test, per-rank-count working directory (tests at several np may run at the same time).
-std::string work_dir(const std::string& name) {
-  const std::string dir = name + ".np" + std::to_string(parallel::size());
-  if (parallel::rank() == 0) {
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  MPI_Barrier(MPI_COMM_WORLD);
-  return dir;
-}
 
 std::string deck(const std::string& mesh_xml, const std::string& block, const std::string& extra = "") {
   return "<ParameterList name=\"shellfrac\">\n" + mesh_xml +
@@ -56,10 +48,6 @@ const std::string panel_mesh =
     "<Parameter name=\"Circumferential Elements\" type=\"int\" value=\"6\"/>"
     "</ParameterList></ParameterList>\n";
 
-void write_file(const std::string& path, const std::string& text) {
-  if (parallel::rank() == 0) std::ofstream(path) << text;
-  MPI_Barrier(MPI_COMM_WORLD);
-}
 
 /// Runs the deck and checks the written results against `expected` (the P2 serial mesh).
 void run_and_check(const std::string& deck_path, const mesh::SerialMesh& expected) {
