@@ -44,6 +44,21 @@ KOKKOS_INLINE_FUNCTION void edge_shape_p2(double s, double n[3]) {
   n[2] = 4 * s * (1 - s);
 }
 
+/// Shape values at an edge point seen from two sides: quadratic (positions) and linear (directors), in each
+/// side's edge-local order; `s` and `s_other` are the point's edge parameters in the two elements.
+struct EdgePointShapes {
+  double p2[3], p2_other[3], p1[2], p1_other[2];
+};
+
+KOKKOS_INLINE_FUNCTION EdgePointShapes edge_point_shapes(double s, double s_other) {
+  EdgePointShapes e;
+  edge_shape_p2(s, e.p2);
+  edge_shape_p2(s_other, e.p2_other);
+  e.p1[0] = 1 - s, e.p1[1] = s;
+  e.p1_other[0] = 1 - s_other, e.p1_other[1] = s_other;
+  return e;
+}
+
 /// Reference data of one local edge of an element.
 struct DgEdgeRef {
   double omega[num_edge_points];         ///< omega_g = w_g |dX/ds|: reference arc-length weights (math.md §1.4)
@@ -176,11 +191,8 @@ KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const double x[
     if (!lift[k]) continue;
     const DgEdgeRef& E = R.edge[k];
     for (int gp = 0; gp < num_edge_points; ++gp) {
-      const double s = edge3_rule.s[gp], sn = E.s_nbr[gp];
-      double no[3], nn[3];
-      edge_shape_p2(s, no);
-      edge_shape_p2(sn, nn);
-      const double lo[2] = {1 - s, s}, ln[2] = {1 - sn, sn};
+      const EdgePointShapes sh = edge_point_shapes(edge3_rule.s[gp], E.s_nbr[gp]);
+      const double *no = sh.p2, *nn = sh.p2_other, *lo = sh.p1, *ln = sh.p1_other;
       for (int c = 0; c < 3; ++c) {
         double jx = 0, jt = 0;
         for (int j = 0; j < 3; ++j) jx += no[j] * x[edge_node(k, j)][c] - nn[j] * xn[k][j][c];
@@ -263,11 +275,8 @@ KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const dou
     if (!lift[k]) continue;
     const DgEdgeRef& E = R.edge[k];
     for (int gp = 0; gp < num_edge_points; ++gp) {
-      const double s = edge3_rule.s[gp], sn = E.s_nbr[gp];
-      double no[3], nn[3];
-      edge_shape_p2(s, no);
-      edge_shape_p2(sn, nn);
-      const double lo[2] = {1 - s, s}, ln[2] = {1 - sn, sn};
+      const EdgePointShapes sh = edge_point_shapes(edge3_rule.s[gp], E.s_nbr[gp]);
+      const double *no = sh.p2, *nn = sh.p2_other, *lo = sh.p1, *ln = sh.p1_other;
       for (int c = 0; c < 3; ++c) {
         double F = 0, H = 0;
         for (int al = 0; al < 2; ++al) {
@@ -318,11 +327,8 @@ KOKKOS_INLINE_FUNCTION double dg_penalty_forces(const DgInterfaceRef& I, double 
   for (int j = 0; j < 2; ++j) gm[j][0] = gm[j][1] = gm[j][2] = gp[j][0] = gp[j][1] = gp[j][2] = 0;
   double energy = 0;
   for (int g = 0; g < num_edge_points; ++g) {
-    const double s = edge3_rule.s[g], sp = I.s_plus[g];
-    double nm[3], np[3];
-    edge_shape_p2(s, nm);
-    edge_shape_p2(sp, np);
-    const double lm[2] = {1 - s, s}, lp[2] = {1 - sp, sp};
+    const EdgePointShapes sh = edge_point_shapes(edge3_rule.s[g], I.s_plus[g]);
+    const double *nm = sh.p2, *np = sh.p2_other, *lm = sh.p1, *lp = sh.p1_other;
     double jx[3], jt[3];
     for (int c = 0; c < 3; ++c) {
       jx[c] = 0, jt[c] = 0;
