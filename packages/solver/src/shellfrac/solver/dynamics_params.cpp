@@ -103,6 +103,9 @@ Teuchos::RCP<const Teuchos::ParameterList> InitialVelocity::valid_parameters() {
   pl->set("Elements", "all", "Element set or block whose nodes get the velocity; 'all' for every element");
   Teuchos::Array<double> v(3, 0.0);
   pl->set("Velocity", v, "Initial velocity vector {vx, vy, vz} [length/time]");
+  pl->set("Angular Velocity", v, "Rigid spin {wx, wy, wz} [1/time] added to Velocity: v = Velocity + w x (X - Center) "
+                                  "and director rates w x t");
+  pl->set("Center", v, "Centre of the spin {x, y, z} [length]");
   return pl;
 }
 
@@ -116,6 +119,11 @@ InitialVelocity InitialVelocity::from_parameters(const std::string& name, Teucho
   SHELLFRAC_INPUT_REQUIRE(v.size() == 3, ctx.file << ": '" << ctx.path << "->Velocity' must have 3 components, not "
                                                   << v.size());
   iv.velocity = {v[0], v[1], v[2]};
+  for (const char* name : {"Angular Velocity", "Center"}) {
+    const auto w = pl.get<Teuchos::Array<double>>(name);
+    SHELLFRAC_INPUT_REQUIRE(w.size() == 3, ctx.file << ": '" << ctx.path << "->" << name << "' must have 3 components");
+    (std::string(name) == "Center" ? iv.center : iv.angular_velocity) = {w[0], w[1], w[2]};
+  }
   return iv;
 }
 

@@ -51,6 +51,8 @@ struct InitialVelocity {
   std::string name;
   std::string elements;  ///< element set or block name; "all" for every element
   Vec3 velocity{0, 0, 0};
+  Vec3 angular_velocity{0, 0, 0};  ///< rigid spin omega: v = velocity + omega x (X - center), tdot = omega x t
+  Vec3 center{0, 0, 0};
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
   static InitialVelocity from_parameters(const std::string& name, Teuchos::ParameterList& pl,
                                          const params::Context& ctx);

@@ -294,6 +294,11 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
       for (int A = 0; A < 6; ++A)
         if (member[dm.mesh_node(le, A)] && !fixed_x[le * 6 + A] && presc[le * 6 + A] < 0) {
           Vec3 vel = iv.velocity;
+          const double r[3] = {X[le * nx + A * 3] - iv.center[0], X[le * nx + A * 3 + 1] - iv.center[1],
+                               X[le * nx + A * 3 + 2] - iv.center[2]};
+          double spin[3];
+          disc::cross3(iv.angular_velocity.data(), r, spin);
+          for (int c = 0; c < 3; ++c) vel[c] += spin[c];
           for (const auto& n : sym_x[le * 6 + A]) {  // no velocity across a symmetry plane
             const double vn = vel[0] * n[0] + vel[1] * n[1] + vel[2] * n[2];
             for (int c = 0; c < 3; ++c) vel[c] -= vn * n[c];
@@ -310,6 +315,29 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) Lam[le * 27 + b * 9 + i * 3 + j] = L[i][j];
     }
+  // Director rates of a rigid spin: tdot = omega x t, material components Tdot = Lambda-bar^T tdot.
+  for (const auto& iv : setup.initial_velocities) {
+    if (iv.angular_velocity == Vec3{0, 0, 0}) continue;
+    std::vector<char> member(mesh.num_nodes(), 0);
+    for (GlobalId e = 0; e < mesh.num_elements(); ++e) {
+      bool in = iv.elements == "all";
+      for (const auto& es : mesh.element_sets)
+        if (es.name == iv.elements) in = in || std::binary_search(es.elements.begin(), es.elements.end(), e);
+      for (std::size_t bl = 0; bl < mesh.blocks.size(); ++bl)
+        if (mesh.blocks[bl].name == iv.elements) in = in || mesh.element_block[e] == static_cast<int>(bl);
+      if (in)
+        for (int A = 0; A < mesh.nodes_per_element; ++A) member[mesh.node(e, A)] = 1;
+    }
+    for (LocalId le = 0; le < no; ++le)
+      for (int b = 0; b < 3; ++b) {
+        if (!member[dm.mesh_node(le, b)] || fixed_t[le * 3 + b]) continue;
+        double td[3], L[3][3], T[2];
+        disc::cross3(iv.angular_velocity.data(), &t[le * nt + b * 3], td);
+        for (int i = 0; i < 9; ++i) L[i / 3][i % 3] = Lam[le * 27 + b * 9 + i];
+        disc::lambda_bar_transpose_times(L, td, T);
+        Tdot[le * 6 + b * 2] += T[0], Tdot[le * 6 + b * 2 + 1] += T[1];
+      }
+  }
   f.resize(no * nx), g.resize(no * nt), energy_e.resize(no), flux.assign(nov * nflux, 0.0);
   const auto& maps = dm.maps();
   state_own = Teuchos::rcp(new dist::multivector_type(maps.owned, nstate));
@@ -767,6 +795,22 @@ StepRecord ShellDynamics::record() const {
   r.external_work = ordered_sum(egid, std::vector<double>(s.work_ext.begin(), s.work_ext.begin() + s.no), s.dm.comm());
   r.reaction_work = ordered_sum(egid, std::vector<double>(s.work_react.begin(), s.work_react.begin() + s.no), s.dm.comm());
   r.damping = ordered_sum(egid, std::vector<double>(s.dissipated.begin(), s.dissipated.begin() + s.no), s.dm.comm());
+  std::vector<std::vector<double>> lm(3, std::vector<double>(s.no, 0.0));
+  for (LocalId le = 0; le < s.no; ++le) {
+    for (int A = 0; A < 6; ++A) {
+      double h[3];
+      disc::cross3(&s.x[le * nx + A * 3], &s.v[le * nx + A * 3], h);
+      for (int c = 0; c < 3; ++c) lm[c][le] += s.mass[le * 6 + A] * h[c];
+    }
+    for (int b = 0; b < 3; ++b) {  // director spin: I t x tdot, tdot = Lambda-bar Tdot
+      double L[3][3], td[3], h[3];
+      for (int i = 0; i < 9; ++i) L[i / 3][i % 3] = s.Lam[le * 27 + b * 9 + i];
+      disc::lambda_bar_times(L, &s.Tdot[le * 6 + b * 2], td);
+      disc::cross3(&s.t[le * nt + b * 3], td, h);
+      for (int c = 0; c < 3; ++c) lm[c][le] += s.inertia[le * 3 + b] * h[c];
+    }
+  }
+  for (int c = 0; c < 3; ++c) r.angular_momentum[c] = ordered_sum(egid, lm[c], s.dm.comm());
   return r;
 }
 

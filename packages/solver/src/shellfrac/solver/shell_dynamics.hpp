@@ -49,6 +49,7 @@ struct StepRecord {
   double external_work = 0;   ///< work of the loads (trapezoidal rule, math.md §9.7)
   double reaction_work = 0;   ///< work of the support reactions (prescribed motions)
   double damping = 0;         ///< energy dissipated by mass damping
+  Vec3 angular_momentum{0, 0, 0};  ///< about the origin: sum m x × v + sum I t × tdot
 };
 
 /// Wall time spent in each phase of the steps taken so far, on this rank [s].

@@ -283,6 +283,7 @@ RunSummary Simulation::run() {
   columns.push_back("damping_dissipation");
   for (const auto& bc : deck_.boundary_conditions)
     for (const char* q : {"_reaction_x", "_reaction_y", "_reaction_z"}) columns.push_back(bc.name + q);
+  for (const char* q : {"angular_momentum_x", "angular_momentum_y", "angular_momentum_z"}) columns.push_back(q);
   io::HistoryWriter history(history_path(), columns, comm_);
   auto& dyn = *dynamics_;
   std::vector<std::vector<Vec3>> nodal(3);
@@ -301,6 +302,7 @@ RunSummary Simulation::run() {
     row.push_back(r.reaction_work);
     row.push_back(r.damping);
     for (double f : dyn.reactions()) row.push_back(f);
+    for (double l : r.angular_momentum) row.push_back(l);
     history.write_row(row);
   };
   write_output();
