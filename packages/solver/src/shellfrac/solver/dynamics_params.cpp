@@ -106,6 +106,8 @@ Teuchos::RCP<const Teuchos::ParameterList> InitialVelocity::valid_parameters() {
   pl->set("Angular Velocity", v, "Rigid spin {wx, wy, wz} [1/time] added to Velocity: v = Velocity + w x (X - Center) "
                                   "and director rates w x t");
   pl->set("Center", v, "Centre of the spin {x, y, z} [length]");
+  pl->set("Normal Velocity", 0.0, "Speed along the reference normal (the director t0; outward for the generators) "
+                                  "added to the above [length/time]");
   return pl;
 }
 
@@ -124,6 +126,7 @@ InitialVelocity InitialVelocity::from_parameters(const std::string& name, Teucho
     SHELLFRAC_INPUT_REQUIRE(w.size() == 3, ctx.file << ": '" << ctx.path << "->" << name << "' must have 3 components");
     (std::string(name) == "Center" ? iv.center : iv.angular_velocity) = {w[0], w[1], w[2]};
   }
+  iv.normal_velocity = pl.get<double>("Normal Velocity");
   return iv;
 }
 

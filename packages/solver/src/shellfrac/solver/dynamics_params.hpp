@@ -53,6 +53,7 @@ struct InitialVelocity {
   Vec3 velocity{0, 0, 0};
   Vec3 angular_velocity{0, 0, 0};  ///< rigid spin omega: v = velocity + omega x (X - center), tdot = omega x t
   Vec3 center{0, 0, 0};
+  double normal_velocity = 0;  ///< speed along the reference director (outward normal), added to the above
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
   static InitialVelocity from_parameters(const std::string& name, Teuchos::ParameterList& pl,
                                          const params::Context& ctx);

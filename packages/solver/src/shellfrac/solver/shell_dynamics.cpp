@@ -299,6 +299,18 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
           double spin[3];
           disc::cross3(iv.angular_velocity.data(), r, spin);
           for (int c = 0; c < 3; ++c) vel[c] += spin[c];
+          if (iv.normal_velocity != 0) {
+            // Reference director at the node: exact at vertices; at a mid-side node the normalized mean of its
+            // edge's vertex directors (the same in every DG copy, so no initial jumps).
+            double n[3];
+            if (A < 3) {
+              disc::copy3(&t[le * nt + A * 3], n);
+            } else {
+              disc::add3(&t[le * nt + disc::edge_node(A - 3, 0) * 3], &t[le * nt + disc::edge_node(A - 3, 1) * 3], n);
+              disc::normalize3(n);
+            }
+            for (int c = 0; c < 3; ++c) vel[c] += iv.normal_velocity * n[c];
+          }
           for (const auto& n : sym_x[le * 6 + A]) {  // no velocity across a symmetry plane
             const double vn = vel[0] * n[0] + vel[1] * n[1] + vel[2] * n[2];
             for (int c = 0; c < 3; ++c) vel[c] -= vn * n[c];
