@@ -157,6 +157,17 @@ inline std::string rectangle_mesh(double lx, double ly, int nx, int ny) {
          "<Parameter name=\"Block Name\" type=\"string\" value=\"shell\"/></ParameterList></ParameterList>\n";
 }
 
+/// The Mesh sublist of a Cylindrical Panel generator (angle in degrees), block "shell".
+inline std::string cylindrical_panel_mesh(double r, double l, double angle, int n_axial, int n_circ) {
+  return "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"Cylindrical Panel\"/>"
+         "<ParameterList name=\"Cylindrical Panel\"><Parameter name=\"Radius\" type=\"double\" value=\"" +
+         xml_double(r) + "\"/><Parameter name=\"Length\" type=\"double\" value=\"" + xml_double(l) +
+         "\"/><Parameter name=\"Angle\" type=\"double\" value=\"" + xml_double(angle) + "\"/>"
+         "<Parameter name=\"Axial Elements\" type=\"int\" value=\"" + std::to_string(n_axial) + "\"/>"
+         "<Parameter name=\"Circumferential Elements\" type=\"int\" value=\"" + std::to_string(n_circ) + "\"/>"
+         "<Parameter name=\"Block Name\" type=\"string\" value=\"shell\"/></ParameterList></ParameterList>\n";
+}
+
 inline std::string slurp(const std::string& path) {
   std::ifstream in(path);
   std::stringstream ss;

@@ -33,57 +33,12 @@ const std::string cantilever_conditions =
 
 }  // namespace
 
-TEST(Dynamics, RigidTranslationOf10000Steps) {
-  const auto dir = work_dir("rigid");
-  const std::string panel =
-      "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"Cylindrical Panel\"/>"
-      "<ParameterList name=\"Cylindrical Panel\"><Parameter name=\"Radius\" type=\"double\" value=\"1.0\"/>"
-      "<Parameter name=\"Length\" type=\"double\" value=\"1.5\"/><Parameter name=\"Angle\" type=\"double\" value=\"90\"/>"
-      "<Parameter name=\"Axial Elements\" type=\"int\" value=\"4\"/>"
-      "<Parameter name=\"Circumferential Elements\" type=\"int\" value=\"3\"/>"
-      "<Parameter name=\"Block Name\" type=\"string\" value=\"shell\"/></ParameterList></ParameterList>\n";
-  // Fixed step below the stable estimate (3.48e-5 for this mesh), 10 000 steps.
-  const std::string body =
-      "<ParameterList name=\"Time Integration\"><Parameter name=\"Time Step\" type=\"double\" value=\"3e-5\"/>"
-      "<Parameter name=\"End Time\" type=\"double\" value=\"0.3\"/>"
-      "<Parameter name=\"History Interval\" type=\"int\" value=\"500\"/></ParameterList>\n"
-      "<ParameterList name=\"Initial Conditions\"><ParameterList name=\"drift\">"
-      "<Parameter name=\"Elements\" type=\"string\" value=\"all\"/>"
-      "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{1.0, 2.0, -3.0}\"/></ParameterList></ParameterList>\n";
-  std::string text = deck(panel, body, dir);
-  text.replace(text.find("{y_max}"), 7, "{x_max}");
-  write_file(dir + "/rigid.xml", text);
-  solver::Simulation sim(dir + "/rigid.xml");
-  const auto summary = sim.run();
-  EXPECT_EQ(summary.steps, 10000);
-  MPI_Barrier(MPI_COMM_WORLD);
-  if (parallel::rank() != 0) return;
-  std::vector<std::string> header;
-  const auto rows = read_history(sim.history_path(), header);
-  ASSERT_EQ(header[3], "kinetic_energy");
-  const double k0 = rows.front()[3];
-  // 1/2 rho h |S| |v|^2 with the exact cylinder area; the lumped mass integrates the P2 surface, whose
-  // area is O(h^4) smaller (7.7e-5 relative on this 4 x 3 mesh), hence the 5e-4 tolerance.
-  EXPECT_NEAR(k0, 0.5 * 1.0 * 0.1 * (M_PI / 2 * 1.5) * 14.0, 5e-4 * k0);
-  for (const auto& r : rows) {
-    EXPECT_LE(r[4] + r[5], 1e-10 * k0) << "strain + penalty energy at step " << r[0];
-    EXPECT_NEAR(r[3], k0, 1e-6 * k0) << "kinetic energy at step " << r[0];
-    ASSERT_EQ(header[10], "x_max_displ_z");
-    EXPECT_NEAR(r[10], -3.0 * r[1], 1e-9) << "probe z-displacement = vz t at step " << r[0];
-  }
-}
-
 namespace {
-/// Runs a free curved panel with an initial translation + spin for 10 000 steps; returns the history.
+/// Runs a free curved panel (fixed step 3e-5, below the stable estimate 3.48e-5) with the translation
+/// {1, 2, -3} plus the spin `omega` for 10 000 steps; returns the history.
 std::vector<std::vector<double>> spin_run(const std::string& name, const std::string& omega, std::vector<std::string>& h) {
   const auto dir = work_dir(name);
-  const std::string panel =
-      "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"Cylindrical Panel\"/>"
-      "<ParameterList name=\"Cylindrical Panel\"><Parameter name=\"Radius\" type=\"double\" value=\"1.0\"/>"
-      "<Parameter name=\"Length\" type=\"double\" value=\"1.5\"/><Parameter name=\"Angle\" type=\"double\" value=\"90\"/>"
-      "<Parameter name=\"Axial Elements\" type=\"int\" value=\"4\"/>"
-      "<Parameter name=\"Circumferential Elements\" type=\"int\" value=\"3\"/>"
-      "<Parameter name=\"Block Name\" type=\"string\" value=\"shell\"/></ParameterList></ParameterList>\n";
+  const std::string panel = cylindrical_panel_mesh(1.0, 1.5, 90, 4, 3);
   const std::string body =
       "<ParameterList name=\"Time Integration\"><Parameter name=\"Time Step\" type=\"double\" value=\"3e-5\"/>"
       "<Parameter name=\"End Time\" type=\"double\" value=\"0.3\"/>"
@@ -101,6 +56,25 @@ std::vector<std::vector<double>> spin_run(const std::string& name, const std::st
   return read_history(sim.history_path(), h);
 }
 }  // namespace
+
+TEST(Dynamics, RigidTranslationOf10000Steps) {
+  std::vector<std::string> header;
+  const auto rows = spin_run("rigid", "{0.0, 0.0, 0.0}", header);
+  if (parallel::rank() != 0) return;
+  ASSERT_EQ(header[3], "kinetic_energy");
+  ASSERT_EQ(rows.back()[0], 10000);
+  const double k0 = rows.front()[3];
+  // 1/2 rho h |S| |v|^2 with the exact cylinder area; the lumped mass integrates the P2 surface, whose
+  // area is O(h^4) smaller (7.7e-5 relative on this 4 x 3 mesh), hence the 5e-4 tolerance.
+  EXPECT_NEAR(k0, 0.5 * 1.0 * 0.1 * (M_PI / 2 * 1.5) * 14.0, 5e-4 * k0);
+  ASSERT_EQ(header[10], "x_max_displ_z");
+  for (const auto& r : rows) {
+    EXPECT_LE(r[4] + r[5], 1e-10 * k0) << "strain + penalty energy at step " << r[0];
+    EXPECT_NEAR(r[3], k0, 1e-6 * k0) << "kinetic energy at step " << r[0];
+    EXPECT_NEAR(r[10], -3.0 * r[1], 1e-9) << "probe z-displacement = vz t at step " << r[0];
+  }
+}
+
 
 // A free body keeps its angular momentum (sum m x × v + sum I t × tdot about the origin) and its energy. A
 // fast spin (|w| = 62 rad/s) also stretches the panel (centrifugal strain rho w^2 r^2 / E ~ 2e-3 with the
@@ -138,13 +112,7 @@ TEST(Dynamics, SpinConservesAngularMomentumAndEnergy) {
 // pattern is not symmetric in th, so the mean y-component is not zero.)
 TEST(Dynamics, NormalInitialVelocity) {
   const auto dir = work_dir("normal_velocity");
-  const std::string panel =
-      "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"Cylindrical Panel\"/>"
-      "<ParameterList name=\"Cylindrical Panel\"><Parameter name=\"Radius\" type=\"double\" value=\"1.0\"/>"
-      "<Parameter name=\"Length\" type=\"double\" value=\"1.5\"/><Parameter name=\"Angle\" type=\"double\" value=\"90\"/>"
-      "<Parameter name=\"Axial Elements\" type=\"int\" value=\"4\"/>"
-      "<Parameter name=\"Circumferential Elements\" type=\"int\" value=\"4\"/>"
-      "<Parameter name=\"Block Name\" type=\"string\" value=\"shell\"/></ParameterList></ParameterList>\n";
+  const std::string panel = cylindrical_panel_mesh(1.0, 1.5, 90, 4, 4);
   const std::string body =
       "<ParameterList name=\"Initial Conditions\"><ParameterList name=\"blast\">"
       "<Parameter name=\"Elements\" type=\"string\" value=\"shell\"/>"

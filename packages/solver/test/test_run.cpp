@@ -38,15 +38,7 @@ std::string deck(const std::string& mesh_xml, const std::string& block, const st
          extra + "</ParameterList>\n";
 }
 
-const std::string panel_mesh =
-    "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"Cylindrical Panel\"/>"
-    "<ParameterList name=\"Cylindrical Panel\">"
-    "<Parameter name=\"Radius\" type=\"double\" value=\"2.9375\"/>"
-    "<Parameter name=\"Length\" type=\"double\" value=\"12.56\"/>"
-    "<Parameter name=\"Angle\" type=\"double\" value=\"120\"/>"
-    "<Parameter name=\"Axial Elements\" type=\"int\" value=\"16\"/>"
-    "<Parameter name=\"Circumferential Elements\" type=\"int\" value=\"6\"/>"
-    "</ParameterList></ParameterList>\n";
+const std::string panel_mesh = test::cylindrical_panel_mesh(2.9375, 12.56, 120, 16, 6);
 
 
 /// Runs the deck and checks the written results against `expected` (the P2 serial mesh).
