@@ -121,6 +121,16 @@ KOKKOS_INLINE_FUNCTION void skew33(const double w[3], double W[3][3]) {
   W[2][0] = -w[1], W[2][1] = w[0], W[2][2] = 0.0;
 }
 
+/// Rotation by the angle theta about the unit axis a (Euler-Rodrigues):
+/// R = cos(theta) I + sin(theta) hat(a) + (1 - cos(theta)) a (x) a.
+KOKKOS_INLINE_FUNCTION void axis_angle_rotation(const double a[3], double theta, double R[3][3]) {
+  const double c = std::cos(theta), s = std::sin(theta);
+  double W[3][3];
+  skew33(a, W);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) R[i][j] = (i == j ? c : 0.0) + s * W[i][j] + (1.0 - c) * a[i] * a[j];
+}
+
 /// A = a (x) b, i.e. A[i][j] = a[i] b[j].
 KOKKOS_INLINE_FUNCTION void outer33(const double a[3], const double b[3], double A[3][3]) {
   for (int i = 0; i < 3; ++i)

@@ -1,19 +1,29 @@
 #include "shellfrac/materials/material_params.hpp"
 
+#include "shellfrac/core/error.hpp"
+
 namespace shellfrac::materials {
 
 Teuchos::RCP<const Teuchos::ParameterList> MaterialParams::valid_parameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("<material name>"));
-  params::set_choice(*pl, "Model", "Elastic", "Bulk constitutive model (elastic resultant law, math.md §3)",
-                     {"Elastic"});
+  params::set_choice(*pl, "Model", "Elastic",
+                     "Bulk constitutive model: Elastic (resultant law, math.md §3) or Resultant Plasticity (Ilyushin "
+                     "ellipsoid in membrane and bending resultants, linear isotropic hardening, math.md §4)",
+                     {"Elastic", "Resultant Plasticity"});
   pl->set("Density", 7800.0, "Mass density rho0 [mass/length^3]", params::positive_double());
   pl->set("Young's Modulus", 200.0e9, "Young's modulus E [force/length^2]", params::positive_double());
   pl->set("Poisson's Ratio", 0.3, "Poisson's ratio nu", params::double_range(-1.0, 0.5, true, true));
+  pl->set("Yield Stress", 0.0, "Resultant Plasticity: initial yield stress Y0 [force/length^2] (required, > 0)",
+          params::non_negative_double());
+  pl->set("Hardening Modulus", 0.0, "Resultant Plasticity: linear isotropic hardening modulus H = d sigma_y / d "
+                                    "(equivalent plastic strain) [force/length^2]; 0 = perfectly plastic",
+          params::non_negative_double());
   return pl;
 }
 
 MaterialParams MaterialParams::from_parameters(const std::string& name, Teuchos::ParameterList& pl,
                                                const params::Context& ctx) {
+  const bool has_yield = pl.isParameter("Yield Stress");
   params::validate(pl, *valid_parameters(), ctx);
   MaterialParams m;
   m.name = name;
@@ -21,6 +31,17 @@ MaterialParams MaterialParams::from_parameters(const std::string& name, Teuchos:
   m.density = pl.get<double>("Density");
   m.youngs_modulus = pl.get<double>("Young's Modulus");
   m.poissons_ratio = pl.get<double>("Poisson's Ratio");
+  m.yield_stress = pl.get<double>("Yield Stress");
+  m.hardening_modulus = pl.get<double>("Hardening Modulus");
+  if (m.plastic()) {
+    SHELLFRAC_INPUT_REQUIRE(has_yield && m.yield_stress > 0,
+                            ctx.file << ": '" << ctx.path << "' has Model = Resultant Plasticity but no positive "
+                                     << "'Yield Stress'");
+  } else {
+    SHELLFRAC_INPUT_REQUIRE(m.yield_stress == 0 && m.hardening_modulus == 0,
+                            ctx.file << ": '" << ctx.path << "' gives a yield stress or hardening modulus, which only "
+                                     << "Model = Resultant Plasticity uses (the Model is " << m.model << ")");
+  }
   return m;
 }
 

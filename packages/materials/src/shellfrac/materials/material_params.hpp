@@ -10,13 +10,16 @@
 namespace shellfrac::materials {
 
 /// Bulk material of a shell block (paper Tables 1-4). The elastic resultant law (math.md §3) uses E, nu;
-/// resultant plasticity (issue: plasticity) will add Y0 and H under Model = "Resultant Plasticity".
+/// Model = "Resultant Plasticity" (math.md §4) adds the yield stress Y0 and the hardening modulus H.
 struct MaterialParams {
   std::string name;
   std::string model = "Elastic";
   double density = 0;          ///< rho0 [mass / length^3]
   double youngs_modulus = 0;   ///< E [force / length^2]
   double poissons_ratio = 0;   ///< nu, in (-1, 0.5)
+  double yield_stress = 0;     ///< Y0 [force / length^2] (Resultant Plasticity)
+  double hardening_modulus = 0;  ///< H [force / length^2], linear isotropic (Resultant Plasticity)
+  bool plastic() const { return model == "Resultant Plasticity"; }
 
   /// Valid parameters of one entry of the "Materials" sublist.
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();

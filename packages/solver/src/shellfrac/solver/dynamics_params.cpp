@@ -61,14 +61,19 @@ Teuchos::RCP<const Teuchos::ParameterList> BoundaryCondition::valid_parameters()
   params::set_choice(*pl, "Type", "Clamped",
                      "Clamped: positions and directors fixed; Simply Supported: positions fixed, directors free; "
                      "Symmetry: no motion along Normal and the director stays in the plane; Prescribed Velocity: "
-                     "velocity ramped smoothly to Velocity over Ramp Time, directors clamped (math.md §10.1-10.2)",
-                     {"Clamped", "Simply Supported", "Symmetry", "Prescribed Velocity"});
+                     "velocity ramped smoothly to Velocity over Ramp Time, directors clamped; Prescribed Rotation: "
+                     "directors rotated about Axis by an angle ramped smoothly to Angle over Ramp Time, positions free "
+                     "(an end moment without drilling DOFs; math.md §10.1-10.2)",
+                     {"Clamped", "Simply Supported", "Symmetry", "Prescribed Velocity", "Prescribed Rotation"});
   pl->set("Node Set", "x_min", "Name of a node set of the mesh");
   pl->set("Normal", Teuchos::Array<double>(Teuchos::tuple<double>(1.0, 0.0, 0.0)), "Symmetry: normal of the symmetry plane {nx, ny, nz}");
   pl->set("Velocity", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0, 0.0)),
           "Prescribed Velocity: final velocity {vx, vy, vz} [length/time]");
-  pl->set("Ramp Time", 0.0, "Prescribed Velocity: duration of the cosine ramp from 0 to Velocity [time]",
+  pl->set("Ramp Time", 0.0, "Prescribed Velocity/Rotation: duration of the cosine ramp from 0 to Velocity/Angle [time]",
           params::non_negative_double());
+  pl->set("Axis", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 1.0, 0.0)),
+          "Prescribed Rotation: rotation axis {ax, ay, az} (right-hand rule)");
+  pl->set("Angle", 0.0, "Prescribed Rotation: final rotation angle [rad]", params::double_range(-100.0, 100.0));
   return pl;
 }
 
@@ -81,7 +86,8 @@ BoundaryCondition BoundaryCondition::from_parameters(const std::string& name, Te
   bc.type = type == "Clamped"            ? Type::Clamped
             : type == "Simply Supported" ? Type::SimplySupported
             : type == "Symmetry"         ? Type::Symmetry
-                                         : Type::PrescribedVelocity;
+            : type == "Prescribed Velocity" ? Type::PrescribedVelocity
+                                            : Type::PrescribedRotation;
   bc.node_set = pl.get<std::string>("Node Set");
   const auto vec3 = [&](const char* name) {
     const auto v = pl.get<Teuchos::Array<double>>(name);
@@ -95,7 +101,20 @@ BoundaryCondition BoundaryCondition::from_parameters(const std::string& name, Te
     for (double& c : bc.normal) c /= n;
   bc.velocity = vec3("Velocity");
   bc.ramp_time = pl.get<double>("Ramp Time");
+  bc.axis = vec3("Axis");
+  const double na = std::sqrt(bc.axis[0] * bc.axis[0] + bc.axis[1] * bc.axis[1] + bc.axis[2] * bc.axis[2]);
+  SHELLFRAC_INPUT_REQUIRE(bc.type != Type::PrescribedRotation || na > 0, ctx.file << ": '" << ctx.path << "->Axis' is zero");
+  if (na > 0)
+    for (double& c : bc.axis) c /= na;
+  bc.angle = pl.get<double>("Angle");
   return bc;
+}
+
+double BoundaryCondition::rotation_angle(double t) const {
+  return (ramp_time > 0 && t < ramp_time) ? 0.5 * angle * (1 - std::cos(M_PI * t / ramp_time)) : angle;
+}
+double BoundaryCondition::rotation_rate(double t) const {
+  return (ramp_time > 0 && t < ramp_time) ? 0.5 * angle * M_PI / ramp_time * std::sin(M_PI * t / ramp_time) : 0.0;
 }
 
 Teuchos::RCP<const Teuchos::ParameterList> InitialVelocity::valid_parameters() {

@@ -34,13 +34,19 @@ struct TimeParams {
 /// One entry of "Boundary Conditions": a condition on every DG copy of the nodes of a node set (math.md §10.1,
 /// §10.2).
 struct BoundaryCondition {
-  enum class Type { Clamped, SimplySupported, Symmetry, PrescribedVelocity };
+  enum class Type { Clamped, SimplySupported, Symmetry, PrescribedVelocity, PrescribedRotation };
   std::string name;
   Type type = Type::Clamped;
   std::string node_set;
   Vec3 normal{0, 0, 1};    ///< Symmetry: unit normal of the symmetry plane
   Vec3 velocity{0, 0, 0};  ///< Prescribed Velocity: final velocity V0 (directors clamped on the set)
-  double ramp_time = 0;    ///< Prescribed Velocity: cosine ramp duration t_r (0 = applied at once)
+  double ramp_time = 0;    ///< Prescribed Velocity/Rotation: cosine ramp duration t_r (0 = applied at once)
+  Vec3 axis{0, 1, 0};      ///< Prescribed Rotation: unit rotation axis
+  double angle = 0;        ///< Prescribed Rotation: final angle [rad] reached at the end of the ramp
+  /// Prescribed Rotation: angle theta(t) = angle (1 - cos(pi t/t_r))/2 for t < t_r, angle afterwards, and its
+  /// first two time derivatives.
+  double rotation_angle(double t) const;
+  double rotation_rate(double t) const;
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
   static BoundaryCondition from_parameters(const std::string& name, Teuchos::ParameterList& pl,
                                            const params::Context& ctx);

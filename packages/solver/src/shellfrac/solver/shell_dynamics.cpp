@@ -57,6 +57,14 @@ struct ShellDynamics::Impl {
   std::vector<int> presc;                       // owned position node: index of its Prescribed Velocity BC, or -1
   std::vector<std::vector<Vec3>> sym_x, sym_t;  // owned position / director node: symmetry-plane normals
   std::vector<std::uint32_t> bc_mask;           // owned position node: bit b set if BC b acts on it
+  /// A director node whose rotation is prescribed (Prescribed Rotation): t = R(theta(t)) t0, Lambda = R Lambda0.
+  struct RotNode {
+    LocalId le;
+    int b, bc;
+    double t0[3], L0[3][3];
+    double t_prev[3], g_prev[3], kin_prev;  // previous step, for the reaction work
+  };
+  std::vector<RotNode> rot_nodes;
   std::vector<double> fext, fext_old, react, react_old, x_old;  // owned: loads, reactions, previous positions
   std::vector<double> gravity_force;            // owned: constant lumped gravity loads
   std::vector<std::vector<LocalId>> pressure_elements;  // per load: owned elements carrying it
@@ -81,7 +89,29 @@ struct ShellDynamics::Impl {
   Vec3 prescribed_displacement(int bc, double t) const;
   Vec3 prescribed_velocity(int bc, double t) const;
   Vec3 prescribed_acceleration(int bc, double t) const;
+  void apply_rotations(double t);
+  double rotary_kinetic(LocalId le, int b) const {
+    const double* T = &Tdot[le * 6 + b * 2];
+    return 0.5 * inertia[le * 3 + b] * (T[0] * T[0] + T[1] * T[1]);
+  }
 };
+
+// Prescribed director rotations (math.md §10.2): t = R(a, theta(t)) t0, Lambda = R Lambda0 and the material
+// director rate Tdot = Lambda-bar^T (theta-dot a x t).
+void ShellDynamics::Impl::apply_rotations(double time) {
+  for (const auto& rn : rot_nodes) {
+    const auto& bc = setup.boundary_conditions[rn.bc];
+    double R[3][3], L[3][3], w[3], td[3], T[2];
+    disc::axis_angle_rotation(bc.axis.data(), bc.rotation_angle(time), R);
+    disc::mat_vec(R, rn.t0, &t[rn.le * nt + rn.b * 3]);
+    disc::mat_mat(R, rn.L0, L);
+    for (int i = 0; i < 9; ++i) Lam[rn.le * 27 + rn.b * 9 + i] = L[i / 3][i % 3];
+    for (int c = 0; c < 3; ++c) w[c] = bc.rotation_rate(time) * bc.axis[c];
+    disc::cross3(w, &t[rn.le * nt + rn.b * 3], td);
+    disc::lambda_bar_transpose_times(L, td, T);
+    Tdot[rn.le * 6 + rn.b * 2] = T[0], Tdot[rn.le * 6 + rn.b * 2 + 1] = T[1];
+  }
+}
 
 // Cosine velocity ramp with its exact displacement integral (math.md §10.2):
 // r(t) = (1 - cos(pi t/t_r))/2 for t < t_r, 1 afterwards.
@@ -192,6 +222,7 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
   }
   // Boundary conditions on every DG copy of the nodes of a node set (math.md §10.1-10.2).
   fixed_x.assign(no * 6, 0), fixed_t.assign(no * 3, 0), presc.assign(no * 6, -1);
+  std::vector<int> rot_bc(no * 3, -1);
   sym_x.assign(no * 6, {}), sym_t.assign(no * 3, {}), bc_mask.assign(no * 6, 0);
   SHELLFRAC_INPUT_REQUIRE(setup.boundary_conditions.size() <= 32, file << ": at most 32 boundary conditions");
   for (std::size_t ib = 0; ib < setup.boundary_conditions.size(); ++ib) {
@@ -225,12 +256,25 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
             presc[i] = static_cast<int>(ib);
             if (A < 3) fixed_t[le * 3 + A] = 1;
             break;
+          case T::PrescribedRotation:
+            if (A < 3) rot_bc[le * 3 + A] = static_cast<int>(ib);
+            break;
         }
       }
   }
-  // A clamped/supported node is fixed whatever else acts on it.
+  // A clamped/supported node is fixed whatever else acts on it; a director clamped by another condition is not
+  // rotated.
   for (LocalId i = 0; i < no * 6; ++i)
     if (fixed_x[i]) presc[i] = -1, sym_x[i].clear();
+  for (LocalId le = 0; le < no; ++le)
+    for (int b = 0; b < 3; ++b)
+      if (rot_bc[le * 3 + b] >= 0 && !fixed_t[le * 3 + b]) {
+        fixed_t[le * 3 + b] = 1, sym_t[le * 3 + b].clear();
+        RotNode rn{};
+        rn.le = le, rn.b = b, rn.bc = rot_bc[le * 3 + b];
+        disc::copy3(&t[le * nt + b * 3], rn.t0);
+        rot_nodes.push_back(rn);
+      }
   // Loads: element lists of pressure loads, lumped gravity forces (constant).
   const auto element_members = [&](const std::string& what, const std::string& name) {
     std::vector<char> member(mesh.num_elements(), 0);
@@ -327,6 +371,8 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) Lam[le * 27 + b * 9 + i * 3 + j] = L[i][j];
     }
+  for (auto& rn : rot_nodes)
+    for (int i = 0; i < 9; ++i) rn.L0[i / 3][i % 3] = Lam[rn.le * 27 + rn.b * 9 + i];
   // Director rates of a rigid spin: tdot = omega x t, material components Tdot = Lambda-bar^T tdot.
   for (const auto& iv : setup.initial_velocities) {
     if (iv.angular_velocity == Vec3{0, 0, 0}) continue;
@@ -362,6 +408,7 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
       const Vec3 pv = prescribed_velocity(presc[i], 0.0);
       for (int c = 0; c < 3; ++c) v[i * 3 + c] = pv[c];
     }
+  apply_rotations(0.0);
   // Start-up: forces and accelerations at t = 0 (math.md §7.4).
   sync_state();
   compute_forces();
@@ -606,6 +653,11 @@ void ShellDynamics::step() {
   auto t0 = std::chrono::steady_clock::now();
   s.x_old.assign(s.x.begin(), s.x.begin() + s.no * nx);
   s.fext_old = s.fext, s.react_old = s.react;
+  for (auto& rn : s.rot_nodes) {
+    disc::copy3(&s.t[rn.le * nt + rn.b * 3], rn.t_prev);
+    disc::copy3(&s.g[rn.le * nt + rn.b * 3], rn.g_prev);
+    rn.kin_prev = s.rotary_kinetic(rn.le, rn.b);
+  }
   const auto remove_normal = [](double* w, const std::vector<Vec3>& normals) {
     for (const auto& n : normals) {
       const double wn = w[0] * n[0] + w[1] * n[1] + w[2] * n[2];
@@ -653,6 +705,7 @@ void ShellDynamics::step() {
       for (int i = 0; i < 9; ++i) s.Lam[le * 27 + b * 9 + i] = L[i / 3][i % 3];
     }
   }
+  s.apply_rotations(t1);
   s.times.update += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   // Forces at t_{n+1}.
   s.sync_state();
@@ -711,6 +764,16 @@ void ShellDynamics::step() {
     }
     s.work_ext[le] += wext, s.work_react[le] += wreact, s.dissipated[le] += diss;
   }
+  // Prescribed rotations: director rates at t_{n+1}, and the work of the support couple, which supplies the
+  // director's internal force work (trapezoidal) and its rotary kinetic energy change.
+  s.apply_rotations(t1);
+  for (const auto& rn : s.rot_nodes) {
+    const double* g1 = &s.g[rn.le * nt + rn.b * 3];
+    const double* t1n = &s.t[rn.le * nt + rn.b * 3];
+    double w = s.rotary_kinetic(rn.le, rn.b) - rn.kin_prev;
+    for (int c = 0; c < 3; ++c) w += 0.5 * (rn.g_prev[c] + g1[c]) * (t1n[c] - rn.t_prev[c]);
+    s.work_react[rn.le] += w;
+  }
   s.time = t1;
   ++s.step;
   s.check_finite();
@@ -739,6 +802,19 @@ std::vector<double> ShellDynamics::reactions() const {
         }
       }
     for (int c = 0; c < 3; ++c) out.push_back(ordered_sum(ids, vals[c], s.dm.comm()));
+    // Support couple on the condition's constrained directors: t x g per director node (g = dU/dt is balanced
+    // by the support; the virtual work g . (dtheta x t) = dtheta . (t x g)).
+    std::vector<GlobalId> dids;
+    std::vector<std::vector<double>> mom(3);
+    for (LocalId le = 0; le < s.no; ++le)
+      for (int b = 0; b < 3; ++b) {
+        if (!(s.bc_mask[le * 6 + b] & (1u << ib)) || !s.fixed_t[le * 3 + b]) continue;
+        dids.push_back(s.dm.dg_node_gid(le, b));
+        double m[3];
+        disc::cross3(&s.t[le * nt + b * 3], &s.g[le * nt + b * 3], m);
+        for (int c = 0; c < 3; ++c) mom[c].push_back(m[c]);
+      }
+    for (int c = 0; c < 3; ++c) out.push_back(ordered_sum(dids, mom[c], s.dm.comm()));
   }
   return out;
 }

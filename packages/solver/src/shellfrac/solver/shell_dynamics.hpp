@@ -84,8 +84,9 @@ class ShellDynamics {
   /// Node-set probes: for each entry of `members` (a flag per mesh node), the mean displacement (3) and
   /// velocity (3) over every DG copy of its nodes, summed in global DG-node order. Collective.
   std::vector<double> probes(const std::vector<std::vector<char>>& members) const;
-  /// Support reaction force summed over each boundary condition's DG nodes (3 per condition, in deck order),
-  /// in global DG-node order. Collective.
+  /// Per boundary condition, in deck order: the support reaction force summed over its DG position nodes (3),
+  /// then the support couple sum t x g over its constrained DG director nodes (3), in global DG-node order.
+  /// Collective.
   std::vector<double> reactions() const;
   /// Accumulated phase timings on this rank.
   const PhaseTimes& phase_times() const;

@@ -172,6 +172,8 @@ DynamicsSetup make_dynamics_setup(const Deck& deck, const mesh::SerialMesh& mesh
   for (const auto& b : mesh.blocks) {
     const auto& sec = deck.blocks.at(b.name);
     const auto& mat = deck.materials.at(sec.material);
+    SHELLFRAC_INPUT_REQUIRE(!mat.plastic(), deck.file << ": material '" << mat.name
+                                                      << "': Resultant Plasticity is not available in the solver yet");
     setup.block_sections.push_back({mat.youngs_modulus, mat.poissons_ratio, mat.density, sec.thickness});
   }
   setup.discretization = deck.discretization;
@@ -282,7 +284,8 @@ RunSummary Simulation::run() {
   columns.push_back("reaction_work");
   columns.push_back("damping_dissipation");
   for (const auto& bc : deck_.boundary_conditions)
-    for (const char* q : {"_reaction_x", "_reaction_y", "_reaction_z"}) columns.push_back(bc.name + q);
+    for (const char* q : {"_reaction_x", "_reaction_y", "_reaction_z", "_moment_x", "_moment_y", "_moment_z"})
+      columns.push_back(bc.name + q);
   for (const char* q : {"angular_momentum_x", "angular_momentum_y", "angular_momentum_z"}) columns.push_back(q);
   io::HistoryWriter history(history_path(), columns, comm_);
   auto& dyn = *dynamics_;
