@@ -166,3 +166,90 @@ inline double max_abs(const std::vector<double>& v) {
 }
 
 }  // namespace shellfrac::disc::test
+
+// ---------------------------------------------------------------------------------------------------------
+// Helpers for patch tests and linearized statics (test_static_verification; usable by any DG operator test).
+namespace shellfrac::disc::test {
+
+/// Affine state x = Fm X on every DG copy (Fm a 3x3 matrix acting on the reference positions), directors
+/// reset to the reference directors T0. On a flat patch with Fm mapping the plane into itself this is a
+/// uniform membrane state (the membrane patch test).
+inline void set_affine_state(Model& model, const double Fm[3][3]) {
+  for (std::size_t i = 0; i < model.X.size() / 3; ++i)
+    for (int r = 0; r < 3; ++r)
+      model.x[3 * i + r] = Fm[r][0] * model.X[3 * i] + Fm[r][1] * model.X[3 * i + 1] + Fm[r][2] * model.X[3 * i + 2];
+  model.t = model.T0;
+}
+
+/// The exact uniform-bending state of DgVerification.UniformBendingPatchTest on a flat patch in a plane
+/// z = const with reference directors t0 = e3: x = X + w(X) e3 with w = kappa X^2/2 (exactly P2) and the
+/// linear (not normalized) director field t = (-kappa X, 0, 1) (exactly P1), on every DG copy. Exactly:
+/// a_1 = e1 + kappa X e3, a_2 = e2, d_1 = (-kappa, 0, 0), d_2 = 0, hence gamma = 0, rho = (-kappa, 0, 0)
+/// (global frame, for every kappa) and eps = (kappa^2 X^2/2, 0, 0).
+inline void set_uniform_bending_state(Model& model, double kappa) {
+  model.x = model.X;
+  model.t = model.T0;
+  for (std::size_t i = 0; i < model.X.size() / 3; ++i) {
+    const double X0 = model.X[3 * i];
+    model.x[3 * i + 2] = model.X[3 * i + 2] + 0.5 * kappa * X0 * X0;
+  }
+  for (std::size_t i = 0; i < model.T0.size() / 3; ++i) model.t[3 * i] = -kappa * model.X[(i / 3) * 18 + (i % 3) * 3];
+}
+
+/// State of one area point of an element: reference position, local Cartesian basis, strains and resultants.
+struct AreaPointState {
+  double X[3];           ///< reference position of the area point (P2 map)
+  double e1[3], e2[3];   ///< local Cartesian reference basis (element_geometry.hpp)
+  double wj0;            ///< w_q j0_q
+  double eps[3], gam[2], rho[3];
+  double N[3], Q[2], M[3];
+};
+
+/// Strains and elastic resultants at the area points of element e in the model's current state, along the
+/// code path of dg_element_forces: dg_kinematics (with the element's lift flags and its neighbours' edge
+/// nodes), compute_strains, materials::elastic_resultants.
+inline void area_point_states(const Model& model, GlobalId e, AreaPointState out[num_area_points]) {
+  double xe[6][3], te[3][3], xn[3][3][3], tn[3][2][3], Xe[6][3];
+  bool lf[3];
+  model.element_inputs(e, xe, te, lf, xn, tn);
+  for (int A = 0; A < 6; ++A)
+    for (int c = 0; c < 3; ++c) Xe[A][c] = model.X[e * 18 + A * 3 + c];
+  ShellKinematics kin[num_area_points];
+  dg_kinematics(model.refs[e], xe, te, lf, xn, tn, kin);
+  for (int q = 0; q < num_area_points; ++q) {
+    AreaPointState& s = out[q];
+    const double xi1 = tri6_rule.xi[q][0], xi2 = tri6_rule.xi[q][1];
+    AreaPointGeometry geo;
+    area_point_geometry(Xe, xi1, xi2, tri6_rule.w[q], geo);
+    double N[6], dN[6][2];
+    p2_shape(xi1, xi2, N, dN);
+    for (int c = 0; c < 3; ++c) {
+      s.X[c] = 0;
+      for (int A = 0; A < 6; ++A) s.X[c] += N[A] * Xe[A][c];
+      s.e1[c] = geo.e1[c], s.e2[c] = geo.e2[c];
+    }
+    s.wj0 = geo.wj0;
+    compute_strains(kin[q], model.refs[e].ref[q], s.eps, s.gam, s.rho);
+    materials::elastic_resultants(model.section, s.eps, s.gam, s.rho, s.N, s.Q, s.M);
+  }
+}
+
+/// Sums over the DG copies of every mesh node: positions (3 components per mesh node, from F[E][A][c]) and
+/// directors (3 components per mesh node, from G[E][a][c]; zero at mid-side nodes).
+inline std::vector<double> sum_position_copies(const Model& model, const std::vector<double>& F) {
+  std::vector<double> s(model.mesh.num_nodes() * 3, 0.0);
+  for (GlobalId e = 0; e < model.mesh.num_elements(); ++e)
+    for (int A = 0; A < 6; ++A)
+      for (int c = 0; c < 3; ++c) s[model.mesh.node(e, A) * 3 + c] += F[e * 18 + A * 3 + c];
+  return s;
+}
+
+inline std::vector<double> sum_director_copies(const Model& model, const std::vector<double>& G) {
+  std::vector<double> s(model.mesh.num_nodes() * 3, 0.0);
+  for (GlobalId e = 0; e < model.mesh.num_elements(); ++e)
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) s[model.mesh.node(e, a) * 3 + c] += G[e * 9 + a * 3 + c];
+  return s;
+}
+
+}  // namespace shellfrac::disc::test
