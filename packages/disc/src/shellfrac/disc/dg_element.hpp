@@ -228,7 +228,8 @@ KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const double x[
 }
 
 /// Internal forces of one element (math.md §5.4) with the point law `law(eps, gam, rho, N, Q, M)` returning
-/// the stored energy per unit reference area.
+/// the stored energy per unit reference area. The law is called exactly once per area point, in the order
+/// q = 0 .. num_area_points - 1 (a law with internal state per point may count its calls).
 ///   x[6][3], t[3][3], lift[3], xn, tn: as for dg_kinematics.
 /// Outputs (overwritten): f[6][3] and g[3][3] on the element's own nodes; fn[k][j][3], gn[k][j][3] on the
 /// neighbour's edge nodes (neighbour's edge-local order), zero where lift[k] is false.

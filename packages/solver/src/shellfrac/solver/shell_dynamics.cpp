@@ -17,6 +17,7 @@
 #include "shellfrac/dist/distributed_mesh.hpp"
 #include "shellfrac/dist/element_maps.hpp"
 #include "shellfrac/materials/elastic_resultant.hpp"
+#include "shellfrac/materials/resultant_plasticity.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
 
 namespace shellfrac::solver {
@@ -28,6 +29,31 @@ constexpr int nstate = nx + nt;   // columns of the ghost-exchanged state
 constexpr int nflux_edge = 15;    // lifting flux per edge: 3 position nodes x 3 + 2 director nodes x 3
 constexpr int nflux = 3 * nflux_edge;
 using exec = dist::execution_space;
+constexpr int nq = disc::num_area_points;
+
+/// The inputs of the element kernel for owned element le (dg_element_forces / dg_kinematics): its nodes, its
+/// lifted edges and, across each lifted edge, the neighbour's edge nodes in the neighbour's edge-local order.
+KOKKOS_INLINE_FUNCTION void element_inputs(const dist::DistributedMesh& d, const double* xp, const double* tp,
+                                           const std::array<bool, 3>& lift, LocalId le, double xe[6][3],
+                                           double te[3][3], bool lf[3], double xn[3][3][3], double tn[3][2][3]) {
+  for (int i = 0; i < nx; ++i) xe[i / 3][i % 3] = xp[le * nx + i];
+  for (int i = 0; i < nt; ++i) te[i / 3][i % 3] = tp[le * nt + i];
+  for (int k = 0; k < 3; ++k) {
+    lf[k] = lift[k];
+    if (!lf[k]) continue;
+    const LocalId nb = d.neighbor(le, k);
+    const int kk = d.neighbor_edge(le, k);
+    for (int j = 0; j < 3; ++j)
+      for (int c = 0; c < 3; ++c) xn[k][j][c] = xp[nb * nx + disc::edge_node(kk, j) * 3 + c];
+    for (int j = 0; j < 2; ++j)
+      for (int c = 0; c < 3; ++c) tn[k][j][c] = tp[nb * nt + disc::edge_node(kk, j) * 3 + c];
+  }
+}
+
+/// von Mises norm of a resultant triple [X11, X22, X12]: sqrt(X11^2 - X11 X22 + X22^2 + 3 X12^2).
+double vm_norm(const double X[3]) {
+  return std::sqrt(std::max(0.0, X[0] * X[0] - X[0] * X[1] + X[1] * X[1] + 3 * X[2] * X[2]));
+}
 /// Sum of values contributed by all ranks, in increasing id order (bitwise independent of the rank count).
 double ordered_sum(const std::vector<GlobalId>& ids, const std::vector<double>& vals, MPI_Comm comm) {
   const auto all_ids = parallel::all_gather(ids, comm);
@@ -48,6 +74,14 @@ struct ShellDynamics::Impl {
   std::vector<disc::DgElementRef> refs;        // owned
   std::vector<std::array<bool, 3>> lift;        // owned: lifted edges
   std::vector<materials::ElasticSection> sect;  // overlap
+  // Resultant plasticity (math.md §4), owned elements: section, flag, state at t_n (committed) and t_{n+1}
+  // (written by the element kernel) per area point, plastic work of the last kernel call and accumulated.
+  bool any_plastic = false;
+  std::vector<materials::PlasticSection> psect;
+  std::vector<char> plastic_el;
+  std::vector<materials::PlasticState> pstate, pstate_new;
+  std::vector<double> pwork_step, plastic_work;
+  std::vector<int> return_failed;
   std::vector<double> beta_x, beta_t;           // overlap
   std::vector<double> mass, inertia;            // owned: [no*6], [no*3]
   std::vector<double> X;                        // overlap reference positions [nov*18]
@@ -85,6 +119,7 @@ struct ShellDynamics::Impl {
   void sync_state();
   void compute_forces();
   void check_finite() const;
+  void commit_plasticity();
   void external_forces(double t);
   Vec3 prescribed_displacement(int bc, double t) const;
   Vec3 prescribed_velocity(int bc, double t) const;
@@ -144,6 +179,16 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
     beta_x[le] = setup.discretization.cx * sc.E * sc.h;
     beta_t[le] = setup.discretization.cT * sc.E * sc.h * sc.h * sc.h / 12;
   }
+  psect.resize(no), plastic_el.assign(no, 0);
+  for (LocalId le = 0; le < no; ++le) {
+    const Section& sc = setup.block_sections.at(dm.element_block(le));
+    if (!sc.plastic) continue;
+    plastic_el[le] = 1, any_plastic = true;
+    psect[le] = materials::make_plastic_section(sc.E, sc.nu, sc.h, sc.Y0, sc.H);
+  }
+  pstate.assign(any_plastic ? no * nq : 0, materials::PlasticState{});
+  pstate_new = pstate;
+  pwork_step.assign(no, 0.0), plastic_work.assign(no, 0.0), return_failed.assign(no, 0);
   // Reference positions and directors (overlap).
   X.resize(nov * nx), t.resize(nov * nt);
   for (LocalId le = 0; le < nov; ++le) {
@@ -412,6 +457,7 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
   // Start-up: forces and accelerations at t = 0 (math.md §7.4).
   sync_state();
   compute_forces();
+  commit_plasticity();
   external_forces(0.0);
   for (LocalId le = 0; le < no; ++le) {
     for (int A = 0; A < 6; ++A) {
@@ -510,30 +556,45 @@ void ShellDynamics::Impl::compute_forces() {
     const auto* rp = refs.data();
     const auto* lp = lift.data();
     const auto* sp = sect.data();
+    const auto* psp = psect.data();
+    const char* plp = plastic_el.data();
+    const materials::PlasticState* pold = pstate.data();
+    materials::PlasticState* pnew = pstate_new.data();
+    double* pwp = pwork_step.data();
+    int* failp = return_failed.data();
     const dist::DistributedMesh* d = &dm;
     Kokkos::parallel_for(
         "shellfrac::ShellElementForces", Kokkos::RangePolicy<exec>(0, no), [=](const int le) {
           double xe[6][3], te[3][3], xn[3][3][3] = {}, tn[3][2][3] = {}, fe[6][3], ge[3][3], fk[3][3][3], gk[3][2][3];
-          for (int i = 0; i < nx; ++i) xe[i / 3][i % 3] = xp[le * nx + i];
-          for (int i = 0; i < nt; ++i) te[i / 3][i % 3] = tp[le * nt + i];
           bool lf[3];
-          for (int k = 0; k < 3; ++k) {
-            lf[k] = lp[le][k];
-            if (!lf[k]) continue;
-            const LocalId nb = d->neighbor(le, k);
-            const int kk = d->neighbor_edge(le, k);
-            for (int j = 0; j < 3; ++j)
-              for (int c = 0; c < 3; ++c) xn[k][j][c] = xp[nb * nx + disc::edge_node(kk, j) * 3 + c];
-            for (int j = 0; j < 2; ++j)
-              for (int c = 0; c < 3; ++c) tn[k][j][c] = tp[nb * nt + disc::edge_node(kk, j) * 3 + c];
-          }
-          const materials::ElasticSection sc = sp[le];
-          auto law = [&sc](const double eps[3], const double gam[2], const double rho[3], double N[3], double Q[2],
+          element_inputs(*d, xp, tp, lp[le], le, xe, te, lf, xn, tn);
+          if (plp[le]) {
+            // Resultant plasticity: the return map at each area point q (the law is called once per point, in
+            // order q = 0..nq-1) from the committed state to this element's slots of the new state.
+            const materials::PlasticSection ps = psp[le];
+            const disc::DgElementRef& R = rp[le];
+            int q = 0, failed = 0;
+            double work = 0;
+            auto law = [&](const double eps[3], const double gam[2], const double rho[3], double N[3], double Q[2],
                            double M[3]) {
-            materials::elastic_resultants(sc, eps, gam, rho, N, Q, M);
-            return materials::elastic_energy(sc, eps, gam, rho);
-          };
-          ep[le] = disc::dg_element_forces(rp[le], xe, te, lf, xn, tn, law, fe, ge, fk, gk);
+              const int k = q++;
+              materials::PlasticState& st = pnew[le * nq + k];
+              const auto r = materials::resultant_return_map(ps, eps, gam, rho, pold[le * nq + k], st, N, Q, M);
+              work += R.wj0[k] * r.plastic_work;
+              failed |= r.converged ? 0 : 1;
+              return materials::elastic_energy(ps.elastic, eps, gam, rho, st.eps_p, st.rho_p);
+            };
+            ep[le] = disc::dg_element_forces(R, xe, te, lf, xn, tn, law, fe, ge, fk, gk);
+            pwp[le] = work, failp[le] = failed;
+          } else {
+            const materials::ElasticSection sc = sp[le];
+            auto law = [&sc](const double eps[3], const double gam[2], const double rho[3], double N[3], double Q[2],
+                             double M[3]) {
+              materials::elastic_resultants(sc, eps, gam, rho, N, Q, M);
+              return materials::elastic_energy(sc, eps, gam, rho);
+            };
+            ep[le] = disc::dg_element_forces(rp[le], xe, te, lf, xn, tn, law, fe, ge, fk, gk);
+          }
           for (int i = 0; i < nx; ++i) fp[le * nx + i] = fe[i / 3][i % 3];
           for (int i = 0; i < nt; ++i) gp[le * nt + i] = ge[i / 3][i % 3];
           for (int k = 0; k < 3; ++k) {
@@ -638,6 +699,23 @@ void ShellDynamics::Impl::check_finite() const {
                                    << " (time step too large or unstable input?)");
 }
 
+// Accepts the plastic state computed by the last element kernel as the state at the new time and adds its
+// plastic work. A return map that hit its iteration limit stops the run on every rank, naming the element.
+void ShellDynamics::Impl::commit_plasticity() {
+  if (!any_plastic) return;
+  GlobalId bad = -1;
+  for (LocalId le = 0; le < no; ++le) {
+    if (!plastic_el[le]) continue;
+    if (return_failed[le] && bad < 0) bad = dm.element_gid(le);
+    plastic_work[le] += pwork_step[le];
+  }
+  const double worst = parallel::max(bad >= 0 ? double(bad) : -1.0, dm.comm());
+  SHELLFRAC_REQUIRE(worst < 0, "the plastic return map did not converge in element " << GlobalId(worst) + 1
+                                   << " at step " << step << ", time " << time
+                                   << " (math.md §4.3; a non-finite or extreme strain?)");
+  pstate.swap(pstate_new);
+}
+
 ShellDynamics::ShellDynamics(const mesh::SerialMesh& mesh, const dist::DistributedMesh& dm, const DynamicsSetup& setup)
     : impl_(std::make_unique<Impl>(mesh, dm, setup)) {}
 ShellDynamics::~ShellDynamics() = default;
@@ -711,6 +789,7 @@ void ShellDynamics::step() {
   s.sync_state();
   s.compute_forces();
   t0 = std::chrono::steady_clock::now();
+  s.commit_plasticity();
   s.external_forces(t1);
   // Accelerations and corrector (steps 4-5); damping force alpha m v_pre.
   for (LocalId le = 0; le < s.no; ++le) {
@@ -829,6 +908,8 @@ double ShellDynamics::bytes_per_element() const {
                                            s.inertia.size() + s.f.size() + s.g.size() + s.flux.size() +
                                            s.energy_e.size() + s.fi.size() + s.energy_i.size()) +
                        sizeof(disc::DgInterfaceRef) * double(s.iref.size()) +
+                       sizeof(materials::PlasticState) * double(s.pstate.size() + s.pstate_new.size()) +
+                       sizeof(materials::PlasticSection) * double(s.psect.size()) +
                        sizeof(double) * double(nstate + nflux) * double(2 * s.nov);  // Tpetra transfer buffers
   return s.no > 0 ? bytes / s.no : 0.0;
 }
@@ -883,6 +964,7 @@ StepRecord ShellDynamics::record() const {
   r.external_work = ordered_sum(egid, std::vector<double>(s.work_ext.begin(), s.work_ext.begin() + s.no), s.dm.comm());
   r.reaction_work = ordered_sum(egid, std::vector<double>(s.work_react.begin(), s.work_react.begin() + s.no), s.dm.comm());
   r.damping = ordered_sum(egid, std::vector<double>(s.dissipated.begin(), s.dissipated.begin() + s.no), s.dm.comm());
+  r.plastic_work = ordered_sum(egid, s.plastic_work, s.dm.comm());
   std::vector<std::vector<double>> lm(3, std::vector<double>(s.no, 0.0));
   for (LocalId le = 0; le < s.no; ++le) {
     for (int A = 0; A < 6; ++A) {
@@ -900,6 +982,37 @@ StepRecord ShellDynamics::record() const {
   }
   for (int c = 0; c < 3; ++c) r.angular_momentum[c] = ordered_sum(egid, lm[c], s.dm.comm());
   return r;
+}
+
+std::vector<std::string> ShellDynamics::element_field_names() {
+  return {"eq_plastic_strain", "membrane_force", "bending_moment", "shear_force"};
+}
+
+void ShellDynamics::element_fields(std::vector<std::vector<double>>& fields) const {
+  const Impl& s = *impl_;
+  fields.assign(4, std::vector<double>(s.no, 0.0));
+  for (LocalId le = 0; le < s.no; ++le) {
+    // The kinematics of the current state (ghosts are current after a step), the resultants of the committed
+    // plastic state: the same values the last element kernel produced.
+    double xe[6][3], te[3][3], xn[3][3][3] = {}, tn[3][2][3] = {};
+    bool lf[3];
+    element_inputs(s.dm, s.x.data(), s.t.data(), s.lift[le], le, xe, te, lf, xn, tn);
+    disc::ShellKinematics kin[nq];
+    const disc::DgElementRef& R = s.refs[le];
+    disc::dg_kinematics(R, xe, te, lf, xn, tn, kin);
+    for (int q = 0; q < nq; ++q) {
+      double eps[3], gam[2], rho[3], N[3], Q[2], M[3];
+      disc::compute_strains(kin[q], R.ref[q], eps, gam, rho);
+      const double zero[3] = {0, 0, 0};
+      const materials::PlasticState* st = s.plastic_el[le] ? &s.pstate[le * nq + q] : nullptr;
+      materials::elastic_resultants(s.sect[le], eps, gam, rho, st ? st->eps_p : zero, st ? st->rho_p : zero, N, Q, M);
+      const double w = R.wj0[q] / R.area;
+      fields[0][le] += w * (st ? st->alpha : 0.0);
+      fields[1][le] += w * vm_norm(N);
+      fields[2][le] += w * vm_norm(M);
+      fields[3][le] += w * std::sqrt(Q[0] * Q[0] + Q[1] * Q[1]);
+    }
+  }
 }
 
 void ShellDynamics::nodal_fields(std::vector<Vec3>& displacement, std::vector<Vec3>& velocity,

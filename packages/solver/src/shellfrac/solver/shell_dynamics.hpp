@@ -28,6 +28,8 @@ namespace shellfrac::solver {
 /// Section and material of a block (by SerialMesh block index).
 struct Section {
   double E = 0, nu = 0, rho = 0, h = 0;
+  bool plastic = false;  ///< resultant plasticity (math.md §4) with yield stress Y0 and hardening modulus H
+  double Y0 = 0, H = 0;
 };
 
 /// Everything the dynamics needs from the deck.
@@ -49,6 +51,7 @@ struct StepRecord {
   double external_work = 0;   ///< work of the loads (trapezoidal rule, math.md §9.7)
   double reaction_work = 0;   ///< work of the support reactions (prescribed motions)
   double damping = 0;         ///< energy dissipated by mass damping
+  double plastic_work = 0;    ///< plastic work (dissipation + stored hardening energy), math.md §4.2
   Vec3 angular_momentum{0, 0, 0};  ///< about the origin: sum m x × v + sum I t × tdot
 };
 
@@ -92,6 +95,12 @@ class ShellDynamics {
   const PhaseTimes& phase_times() const;
   /// Bytes of per-element state and reference data held on this rank, divided by the owned elements.
   double bytes_per_element() const;
+  /// Names of the element result fields written by element_fields (Exodus element variables).
+  static std::vector<std::string> element_field_names();
+  /// Owned element fields, area-weighted means over the element's area points: equivalent plastic strain alpha,
+  /// von Mises norms of the membrane forces sqrt(N11^2 - N11 N22 + N22^2 + 3 N12^2) and of the moments (same
+  /// form), and |Q|. fields[k][le] for k in element_field_names() order.
+  void element_fields(std::vector<std::vector<double>>& fields) const;
   /// Owned DG nodal fields, element-major as DistributedMesh::node_coords: displacement, velocity, director
   /// (P1: mid-side nodes show the mean of their edge's vertex directors).
   void nodal_fields(std::vector<Vec3>& displacement, std::vector<Vec3>& velocity, std::vector<Vec3>& director) const;

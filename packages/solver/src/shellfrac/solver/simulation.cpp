@@ -172,9 +172,8 @@ DynamicsSetup make_dynamics_setup(const Deck& deck, const mesh::SerialMesh& mesh
   for (const auto& b : mesh.blocks) {
     const auto& sec = deck.blocks.at(b.name);
     const auto& mat = deck.materials.at(sec.material);
-    SHELLFRAC_INPUT_REQUIRE(!mat.plastic(), deck.file << ": material '" << mat.name
-                                                      << "': Resultant Plasticity is not available in the solver yet");
-    setup.block_sections.push_back({mat.youngs_modulus, mat.poissons_ratio, mat.density, sec.thickness});
+    setup.block_sections.push_back({mat.youngs_modulus, mat.poissons_ratio, mat.density, sec.thickness, mat.plastic(),
+                                    mat.yield_stress, mat.hardening_modulus});
   }
   setup.discretization = deck.discretization;
   setup.time = deck.time;
@@ -263,6 +262,7 @@ RunSummary Simulation::run() {
   for (const auto& b : mesh_->blocks) layout.block_names.push_back(b.name), layout.block_ids.push_back(b.id);
   layout.nodal_vectors = {"displ", "velocity", "director"};
   layout.element_scalars = {"block", "rank"};
+  for (const auto& name : ShellDynamics::element_field_names()) layout.element_scalars.push_back(name);
   layout.info = info_records(*deck_.expanded);
   std::vector<std::vector<double>> element(2);
   for (LocalId le = 0; le < dm.num_owned(); ++le) {
@@ -283,6 +283,7 @@ RunSummary Simulation::run() {
     for (const char* q : {"_displ_x", "_displ_y", "_displ_z", "_vel_x", "_vel_y", "_vel_z"}) columns.push_back(p + q);
   columns.push_back("reaction_work");
   columns.push_back("damping_dissipation");
+  columns.push_back("plastic_dissipation");
   for (const auto& bc : deck_.boundary_conditions)
     for (const char* q : {"_reaction_x", "_reaction_y", "_reaction_z", "_moment_x", "_moment_y", "_moment_z"})
       columns.push_back(bc.name + q);
@@ -290,20 +291,26 @@ RunSummary Simulation::run() {
   io::HistoryWriter history(history_path(), columns, comm_);
   auto& dyn = *dynamics_;
   std::vector<std::vector<Vec3>> nodal(3);
+  std::vector<std::vector<double>> fields;
   auto write_output = [&] {
     dyn.nodal_fields(nodal[0], nodal[1], nodal[2]);
+    dyn.element_fields(fields);
+    element.resize(2);
+    element.insert(element.end(), fields.begin(), fields.end());
     exo.write_step(dyn.time(), nodal, element);
   };
   const StepRecord r0 = dyn.record();
   const double e0 = r0.kinetic + r0.strain + r0.penalty;
   auto write_history = [&] {
     const StepRecord r = dyn.record();
-    // Energy balance (math.md §9.7): K + U_el + U_stab + D_damp - (K0 + U0) - W_ext - W_react.
-    const double err = r.kinetic + r.strain + r.penalty + r.damping - e0 - r.external_work - r.reaction_work;
+    // Energy balance (math.md §9.7): K + U_el + U_stab + D_damp + W_p - (K0 + U0) - W_ext - W_react.
+    const double err = r.kinetic + r.strain + r.penalty + r.damping + r.plastic_work - e0 - r.external_work -
+                       r.reaction_work;
     std::vector<double> row = {double(r.step), r.time, r.dt, r.kinetic, r.strain, r.penalty, r.external_work, err};
     for (double p : dyn.probes(probe_members_)) row.push_back(p);
     row.push_back(r.reaction_work);
     row.push_back(r.damping);
+    row.push_back(r.plastic_work);
     for (double f : dyn.reactions()) row.push_back(f);
     for (double l : r.angular_momentum) row.push_back(l);
     history.write_row(row);
