@@ -149,4 +149,13 @@ TEST(Run, BadDecksAreRejectedBeforeAnyOutput) {
                   {"'shellfrac->Partitioning->Method'", "'METIS' 'Zoltan2'"});
   expect_rejected(dir, "<ParameterList name=\"shellfrac\"><ParameterList name=\"Mesh\"/></ParameterList>",
                   {"the deck needs a 'Blocks' sublist"});
+  // Plasticity parameters: the model needs a yield stress; an elastic material must not carry one.
+  std::string no_yield = deck(panel_mesh, "shell", out);
+  no_yield.replace(no_yield.find("<Parameter name=\"Density\""), 0,
+                   "<Parameter name=\"Model\" type=\"string\" value=\"Resultant Plasticity\"/>");
+  expect_rejected(dir, no_yield, {"'shellfrac->Materials->al' has Model = Resultant Plasticity but no positive 'Yield Stress'"});
+  std::string elastic_yield = deck(panel_mesh, "shell", out);
+  elastic_yield.replace(elastic_yield.find("<Parameter name=\"Density\""), 0,
+                        "<Parameter name=\"Yield Stress\" type=\"double\" value=\"44e3\"/>");
+  expect_rejected(dir, elastic_yield, {"gives a yield stress or hardening modulus, which only Model = Resultant Plasticity uses"});
 }
