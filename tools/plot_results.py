@@ -105,8 +105,9 @@ def main():
         t = [float(r["time"]) for r in rows]
         probes = [c for c in rows[0] if c.endswith("_displ_z")]
         hx = fig.add_subplot(2 if probes else 1, 2, 2)
-        for col in ("kinetic_energy", "strain_energy", "penalty_energy", "energy_balance_error"):
-            if col in rows[0]:
+        for col in ("kinetic_energy", "strain_energy", "penalty_energy", "plastic_dissipation",
+                    "energy_balance_error"):
+            if col in rows[0] and (col != "plastic_dissipation" or any(float(r[col]) != 0 for r in rows)):
                 hx.plot(t, [float(r[col]) for r in rows], label=col)
         hx.set_xlabel("time")
         hx.set_ylabel("energy")
