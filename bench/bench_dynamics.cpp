@@ -107,6 +107,7 @@ int run(int argc, char** argv) {
   const double gather = per_element_step(after.gather - before.gather);
   const double exchange = per_element_step(after.exchange - before.exchange);
   const double update = per_element_step(after.update - before.update);
+  const double nucleation = per_element_step(after.nucleation - before.nucleation);
   const double total = per_element_step(wall);
   const double bytes = parallel::max(dyn.bytes_per_element(), comm);
   if (root) {
@@ -118,6 +119,7 @@ int run(int argc, char** argv) {
               << "gather_us_per_element_step=" << gather << "\n"
               << "communication_us_per_element_step=" << exchange << "\n"
               << "update_us_per_element_step=" << update << "\n"
+              << "nucleation_check_us_per_element_step=" << nucleation << " (part of update)\n"
               << "bytes_per_element=" << bytes << "\n"
               << "total_us_per_element_step=" << total << std::endl;
   }

@@ -13,13 +13,11 @@
 #include <mpi.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "deck_test_util.hpp"
+#include "serial_compare.hpp"
 #include "shellfrac/core/parallel.hpp"
-#include "shellfrac/io/exodus_results.hpp"
 #include "shellfrac/materials/resultant_plasticity.hpp"
 #include "shellfrac/solver/simulation.hpp"
 
@@ -133,22 +131,5 @@ TEST(Plasticity, CylindricalPanel) {
   ::testing::Test::RecordProperty("max_energy_error_over_k0", std::to_string(max_err / k0));
   EXPECT_LE(max_err, 5e-3 * k0);
   EXPECT_GT(last_work, 0.8 * k0) << "most of the impulse must be dissipated plastically";
-  if (parallel::size() > 1 && parallel::rank() == 0) {
-    std::string serial = text;
-    replace(serial, "value=\"" + dir + "\"", "value=\"" + dir + "/serial\"");
-    std::filesystem::create_directories(dir + "/serial");
-    std::ofstream(dir + "/panel_serial.xml") << serial;
-    solver::Simulation ser(dir + "/panel_serial.xml", MPI_COMM_SELF);
-    ser.run();
-    EXPECT_EQ(slurp(sim.history_path()), slurp(ser.history_path())) << "history differs from the serial run";
-    const auto rp = io::read_results(sim.exodus_path()), rs = io::read_results(ser.exodus_path());
-    EXPECT_EQ(rp.times, rs.times);
-    EXPECT_EQ(rp.nodal, rs.nodal);
-    ASSERT_EQ(rp.element_names, rs.element_names);
-    ASSERT_EQ(rp.element.size(), rs.element.size());
-    for (std::size_t step = 0; step < rp.element.size(); ++step)
-      for (std::size_t k = 0; k < rp.element_names.size(); ++k)
-        if (rp.element_names[k] != "rank") EXPECT_EQ(rp.element[step][k], rs.element[step][k]) << rp.element_names[k];
-  }
-  MPI_Barrier(MPI_COMM_WORLD);
+  expect_same_as_serial(sim, text, dir, "panel");
 }

@@ -233,12 +233,17 @@ KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const double x[
 ///   x[6][3], t[3][3], lift[3], xn, tn: as for dg_kinematics.
 /// Outputs (overwritten): f[6][3] and g[3][3] on the element's own nodes; fn[k][j][3], gn[k][j][3] on the
 /// neighbour's edge nodes (neighbour's edge-local order), zero where lift[k] is false.
+/// Optional output edge_nm (if not null): at each edge point g of each edge k, the element's edge force and
+/// couple per unit reference length from the P1 L2 projections of its resultants (math.md §9.5 step 1):
+/// edge_nm[k][g][0..2] = sum_alpha (Pi n^alpha)(xi_g) nu_{E,alpha}, edge_nm[k][g][3..5] the same for m^alpha,
+/// with nu_E the element's outward co-normal: the traction on E across its edge (the force per unit length
+/// that the material beyond the edge exerts on E).
 /// Returns the element's strain energy sum_q w_q j0_q W.
 template <class Law>
 KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const double x[6][3], const double t[3][3],
                                                 const bool lift[3], const double xn[3][3][3], const double tn[3][2][3],
                                                 const Law& law, double f[6][3], double g[3][3], double fn[3][3][3],
-                                                double gn[3][2][3]) {
+                                                double gn[3][2][3], double (*edge_nm)[num_edge_points][6] = nullptr) {
   // 1.-2. Liftings of the jumps and DG kinematics at the area points.
   ShellKinematics kins[num_area_points];
   dg_kinematics(R, x, t, lift, xn, tn, kins);
@@ -247,6 +252,7 @@ KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const dou
   for (int a = 0; a < 3; ++a) g[a][0] = g[a][1] = g[a][2] = 0;
   double Pix[2][3][3] = {};  // [alpha][component][psi]: sum_q w j0 n^alpha (x) psi
   double Pit[2][3] = {};     // [alpha][component]:      sum_q w j0 m^alpha
+  double Pim[2][3][3] = {};  // [alpha][component][psi]: sum_q w j0 m^alpha (x) psi (only for edge_nm)
   double energy = 0;
   for (int q = 0; q < num_area_points; ++q) {
     const ShellKinematics& kin = kins[q];
@@ -265,10 +271,25 @@ KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const dou
         for (int a = 0; a < 3; ++a) g[a][c] += w * R.dL[a][al] * ma;
         for (int b = 0; b < 3; ++b) Pix[al][c][b] += w * na * R.L[q][b];
         Pit[al][c] += w * ma;
+        if (edge_nm)
+          for (int b = 0; b < 3; ++b) Pim[al][c][b] += w * ma * R.L[q][b];
       }
     for (int a = 0; a < 3; ++a)
       for (int c = 0; c < 3; ++c) g[a][c] += w * R.L[q][a] * l[c];
   }
+  // 2''. Edge tractions of the projected resultants: W^u_{g,alpha} = 1/2 omega_g nu_alpha Mpsi^-1 psi(xi_g).
+  if (edge_nm)
+    for (int k = 0; k < 3; ++k)
+      for (int gp = 0; gp < num_edge_points; ++gp) {
+        const DgEdgeRef& E = R.edge[k];
+        const double s = 2.0 / E.omega[gp];
+        for (int c = 0; c < 3; ++c) {
+          double n = 0, m = 0;
+          for (int al = 0; al < 2; ++al)
+            for (int b = 0; b < 3; ++b) n += Pix[al][c][b] * E.Wu[gp][al][b], m += Pim[al][c][b] * E.Wu[gp][al][b];
+          edge_nm[k][gp][c] = s * n, edge_nm[k][gp][3 + c] = s * m;
+        }
+      }
   // 3. Lifting fluxes F_g, H_g on own and neighbour edge nodes (math.md §5.4).
   for (int k = 0; k < 3; ++k) {
     for (int j = 0; j < 3; ++j) fn[k][j][0] = fn[k][j][1] = fn[k][j][2] = 0;

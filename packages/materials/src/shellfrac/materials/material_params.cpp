@@ -18,6 +18,12 @@ Teuchos::RCP<const Teuchos::ParameterList> MaterialParams::valid_parameters() {
   pl->set("Hardening Modulus", 0.0, "Resultant Plasticity: linear isotropic hardening modulus H = d sigma_y / d "
                                     "(equivalent plastic strain) [force/length^2]; 0 = perfectly plastic",
           params::non_negative_double());
+  pl->set("Cohesive Strength", 0.0, "sigma_c: strength of the extrinsic cohesive law on the element edges "
+                                    "[force/length^2] (paper §3); 0 = this material never breaks",
+          params::non_negative_double());
+  pl->set("Fracture Energy", 0.0, "Gamma: work of separation per unit crack area [force/length]; 0 = the "
+                                  "strength drops to zero at once when an edge breaks (paper §6.3)",
+          params::non_negative_double());
   return pl;
 }
 
@@ -33,6 +39,10 @@ MaterialParams MaterialParams::from_parameters(const std::string& name, Teuchos:
   m.poissons_ratio = pl.get<double>("Poisson's Ratio");
   m.yield_stress = pl.get<double>("Yield Stress");
   m.hardening_modulus = pl.get<double>("Hardening Modulus");
+  m.cohesive_strength = pl.get<double>("Cohesive Strength");
+  m.fracture_energy = pl.get<double>("Fracture Energy");
+  SHELLFRAC_INPUT_REQUIRE(m.cohesive_strength > 0 || m.fracture_energy == 0,
+                          ctx.file << ": '" << ctx.path << "' gives a 'Fracture Energy' but no 'Cohesive Strength'");
   if (m.plastic()) {
     SHELLFRAC_INPUT_REQUIRE(has_yield && m.yield_stress > 0,
                             ctx.file << ": '" << ctx.path << "' has Model = Resultant Plasticity but no positive "

@@ -19,6 +19,8 @@ struct MaterialParams {
   double poissons_ratio = 0;   ///< nu, in (-1, 0.5)
   double yield_stress = 0;     ///< Y0 [force / length^2] (Resultant Plasticity)
   double hardening_modulus = 0;  ///< H [force / length^2], linear isotropic (Resultant Plasticity)
+  double cohesive_strength = 0;  ///< sigma_c [force / length^2]; 0 = edges of this material never break
+  double fracture_energy = 0;    ///< Gamma [force / length] (work of separation per unit area), >= 0
   bool plastic() const { return model == "Resultant Plasticity"; }
 
   /// Valid parameters of one entry of the "Materials" sublist.

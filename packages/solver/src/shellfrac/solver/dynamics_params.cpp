@@ -56,6 +56,29 @@ TimeParams TimeParams::from_parameters(Teuchos::ParameterList& pl, const params:
   return t;
 }
 
+Teuchos::RCP<const Teuchos::ParameterList> FractureParams::valid_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Fracture"));
+  pl->set("Edges", "all", "Interior edges that may break: 'all', or the name of a side set of the mesh (e.g. a "
+                          "ligament); both sides' materials also need a Cohesive Strength > 0");
+  pl->set("Alpha 1", 1.0, "alpha1: weight of the sliding jump in the effective opening (paper eq. 20)",
+          params::positive_double());
+  pl->set("Alpha 2", 1.0, "alpha2: weight of the normal director jump h theta_N (paper eq. 20)",
+          params::positive_double());
+  pl->set("Alpha 3", 1.0, "alpha3: weight of the tangential director jump h |theta_S| (paper eq. 20)",
+          params::positive_double());
+  return pl;
+}
+
+FractureParams FractureParams::from_parameters(Teuchos::ParameterList& pl, const params::Context& ctx) {
+  params::validate(pl, *valid_parameters(), ctx);
+  FractureParams f;
+  f.edges = pl.get<std::string>("Edges");
+  f.alpha1 = pl.get<double>("Alpha 1");
+  f.alpha2 = pl.get<double>("Alpha 2");
+  f.alpha3 = pl.get<double>("Alpha 3");
+  return f;
+}
+
 Teuchos::RCP<const Teuchos::ParameterList> BoundaryCondition::valid_parameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("<condition name>"));
   params::set_choice(*pl, "Type", "Clamped",

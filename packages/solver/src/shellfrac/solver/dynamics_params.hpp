@@ -31,6 +31,16 @@ struct TimeParams {
   static TimeParams from_parameters(Teuchos::ParameterList& pl, const params::Context& ctx);
 };
 
+/// "Fracture": where edges may break and the weights of the effective opening (paper eq. 20, math.md §9).
+/// An interior edge can break when the materials of both sides have a Cohesive Strength > 0 and the edge
+/// is in `edges` ("all", or the name of a side set of the mesh).
+struct FractureParams {
+  std::string edges = "all";
+  double alpha1 = 1, alpha2 = 1, alpha3 = 1;
+  static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
+  static FractureParams from_parameters(Teuchos::ParameterList& pl, const params::Context& ctx);
+};
+
 /// One entry of "Boundary Conditions": a condition on every DG copy of the nodes of a node set (math.md §10.1,
 /// §10.2).
 struct BoundaryCondition {

@@ -18,6 +18,7 @@
 #include "shellfrac/dist/element_maps.hpp"
 #include "shellfrac/materials/elastic_resultant.hpp"
 #include "shellfrac/materials/resultant_plasticity.hpp"
+#include "shellfrac/solver/cohesive_interface.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
 
 namespace shellfrac::solver {
@@ -28,6 +29,8 @@ constexpr int nt = 9;             // director values per element (3 vertices x 3
 constexpr int nstate = nx + nt;   // columns of the ghost-exchanged state
 constexpr int nflux_edge = 15;    // lifting flux per edge: 3 position nodes x 3 + 2 director nodes x 3
 constexpr int nflux = 3 * nflux_edge;
+constexpr int nedge_nm = 3 * disc::num_edge_points * 6;  // projected edge force + couple per edge point (fracture)
+enum InterfaceState : int { intact = 0, cohesive = 1, separated = 2 };
 using exec = dist::execution_space;
 constexpr int nq = disc::num_area_points;
 
@@ -82,6 +85,21 @@ struct ShellDynamics::Impl {
   std::vector<materials::PlasticState> pstate, pstate_new;
   std::vector<double> pwork_step, plastic_work;
   std::vector<int> return_failed;
+  // Fracture (math.md §9), per local interface: may it break, its cohesive parameters, its state, delta_max and
+  // the last co-normal at its edge points, its stored and dissipated cohesive energy, the DG energy released
+  // when it was activated (penalty part); per owned element: the strain energy released by switching off the
+  // lifting of its edges. edge_nm (overlap): the elements' projected edge tractions for the nucleation check.
+  bool fracture = false;  // some interface of the mesh may break (the same on every rank)
+  int nflux_cols = nflux;
+  std::vector<char> breakable;
+  std::vector<materials::CohesiveParams> cparams;
+  std::vector<int> istate;
+  std::vector<double> dmax, conormal, ucoh, dcoh, act_i, act_e;
+  std::vector<double> edge_nm;
+  std::vector<std::array<GlobalId, 3>> all_interfaces;  // fracture: (gid, minus gid, plus gid) of every interface
+  mutable GlobalId fragments_at = -1;                   // number of separated interfaces the cache belongs to
+  mutable GlobalId fragments = 0;
+  mutable std::vector<GlobalId> fragment_root;           // per global element: smallest element gid of its fragment
   std::vector<double> beta_x, beta_t;           // overlap
   std::vector<double> mass, inertia;            // owned: [no*6], [no*3]
   std::vector<double> X;                        // overlap reference positions [nov*18]
@@ -120,6 +138,11 @@ struct ShellDynamics::Impl {
   void compute_forces();
   void check_finite() const;
   void commit_plasticity();
+  void nucleate();
+  double element_energy(LocalId le) const;
+  template <class F>
+  void area_points(LocalId le, F&& f) const;
+  void update_fragments() const;
   void external_forces(double t);
   Vec3 prescribed_displacement(int bc, double t) const;
   Vec3 prescribed_velocity(int bc, double t) const;
@@ -264,6 +287,48 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
     ibeta_t[i] = 0.5 * (beta_t[fc.minus] + beta_t[fc.plus]);
     if (fc.minus < no) incident[fc.minus].push_back({i, 0});
     if (fc.plus < no) incident[fc.plus].push_back({i, 1});
+  }
+  // Fracture: an interior, manifold interface between two breakable sections, in the Fracture->Edges set.
+  {
+    const auto& fr = setup.fracture;
+    std::set<std::pair<GlobalId, int>> allowed;
+    if (fr.edges != "all") {
+      const auto it = std::find_if(mesh.side_sets.begin(), mesh.side_sets.end(),
+                                   [&](const auto& ss) { return ss.name == fr.edges; });
+      std::string names;
+      for (const auto& ss : mesh.side_sets) names += " '" + ss.name + "'";
+      SHELLFRAC_INPUT_REQUIRE(it != mesh.side_sets.end(), file << ": 'Fracture->Edges' names side set '" << fr.edges
+                                                              << "', which the mesh (" << mesh.source
+                                                              << ") does not have; its side sets:" << names);
+      for (std::size_t k = 0; k < it->elements.size(); ++k) allowed.insert({it->elements[k], it->local_edges[k]});
+    }
+    breakable.assign(ni, 0), cparams.resize(ni), istate.assign(ni, intact);
+    dmax.assign(ni * 3, 0.0), conormal.assign(ni * 9, 0.0), ucoh.assign(ni, 0.0), dcoh.assign(ni, 0.0);
+    act_i.assign(ni, 0.0), act_e.assign(no, 0.0);
+    bool any = false;
+    for (int i = 0; i < ni; ++i) {
+      const auto& fc = ifs[i];
+      const Section& a = setup.block_sections.at(dm.element_block(fc.minus));
+      const Section& b = setup.block_sections.at(dm.element_block(fc.plus));
+      if (fc.non_manifold || a.sigma_c <= 0 || b.sigma_c <= 0) continue;
+      if (fr.edges != "all" && !allowed.count({dm.element_gid(fc.minus), fc.minus_edge}) &&
+          !allowed.count({dm.element_gid(fc.plus), fc.plus_edge}))
+        continue;
+      // CHOICE: sides of different sections use the mean thickness, strength and work of separation.
+      breakable[i] = 1, any = true;
+      cparams[i] = materials::make_cohesive_params(0.5 * (a.h + b.h), 0.5 * (a.sigma_c + b.sigma_c),
+                                                   0.5 * (a.Gamma + b.Gamma), fr.alpha1, fr.alpha2, fr.alpha3);
+    }
+    fracture = parallel::any(any, dm.comm());
+    nflux_cols = nflux + (fracture ? nedge_nm : 0);
+    if (fracture) {
+      std::vector<GlobalId> mine;
+      for (const auto& fc : ifs)
+        if (fc.owned) mine.insert(mine.end(), {fc.gid, dm.element_gid(fc.minus), dm.element_gid(fc.plus)});
+      const auto all = parallel::all_gather(mine, dm.comm());
+      for (std::size_t k = 0; k + 2 < all.size(); k += 3) all_interfaces.push_back({all[k], all[k + 1], all[k + 2]});
+      std::sort(all_interfaces.begin(), all_interfaces.end());
+    }
   }
   // Boundary conditions on every DG copy of the nodes of a node set (math.md §10.1-10.2).
   fixed_x.assign(no * 6, 0), fixed_t.assign(no * 3, 0), presc.assign(no * 6, -1);
@@ -441,12 +506,12 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
         Tdot[le * 6 + b * 2] += T[0], Tdot[le * 6 + b * 2 + 1] += T[1];
       }
   }
-  f.resize(no * nx), g.resize(no * nt), energy_e.resize(no), flux.assign(nov * nflux, 0.0);
+  f.resize(no * nx), g.resize(no * nt), energy_e.resize(no), flux.assign(nov * nflux_cols, 0.0);
   const auto& maps = dm.maps();
   state_own = Teuchos::rcp(new dist::multivector_type(maps.owned, nstate));
   state_ov = Teuchos::rcp(new dist::multivector_type(maps.overlap, nstate));
-  flux_own = Teuchos::rcp(new dist::multivector_type(maps.owned, nflux));
-  flux_ov = Teuchos::rcp(new dist::multivector_type(maps.overlap, nflux));
+  flux_own = Teuchos::rcp(new dist::multivector_type(maps.owned, nflux_cols));
+  flux_ov = Teuchos::rcp(new dist::multivector_type(maps.overlap, nflux_cols));
   // Prescribed velocities at t = 0.
   for (LocalId i = 0; i < no * 6; ++i)
     if (presc[i] >= 0) {
@@ -563,11 +628,16 @@ void ShellDynamics::Impl::compute_forces() {
     double* pwp = pwork_step.data();
     int* failp = return_failed.data();
     const dist::DistributedMesh* d = &dm;
+    const int ncols = nflux_cols;
+    const bool with_edge_nm = fracture;
     Kokkos::parallel_for(
         "shellfrac::ShellElementForces", Kokkos::RangePolicy<exec>(0, no), [=](const int le) {
           double xe[6][3], te[3][3], xn[3][3][3] = {}, tn[3][2][3] = {}, fe[6][3], ge[3][3], fk[3][3][3], gk[3][2][3];
           bool lf[3];
           element_inputs(*d, xp, tp, lp[le], le, xe, te, lf, xn, tn);
+          // Projected edge tractions (nucleation check) go to the tail of the element's flux row.
+          auto* enm = with_edge_nm ? reinterpret_cast<double(*)[disc::num_edge_points][6]>(flp + le * ncols + nflux)
+                                   : nullptr;
           if (plp[le]) {
             // Resultant plasticity: the return map at each area point q (the law is called once per point, in
             // order q = 0..nq-1) from the committed state to this element's slots of the new state.
@@ -584,7 +654,7 @@ void ShellDynamics::Impl::compute_forces() {
               failed |= r.converged ? 0 : 1;
               return materials::elastic_energy(ps.elastic, eps, gam, rho, st.eps_p, st.rho_p);
             };
-            ep[le] = disc::dg_element_forces(R, xe, te, lf, xn, tn, law, fe, ge, fk, gk);
+            ep[le] = disc::dg_element_forces(R, xe, te, lf, xn, tn, law, fe, ge, fk, gk, enm);
             pwp[le] = work, failp[le] = failed;
           } else {
             const materials::ElasticSection sc = sp[le];
@@ -593,12 +663,12 @@ void ShellDynamics::Impl::compute_forces() {
               materials::elastic_resultants(sc, eps, gam, rho, N, Q, M);
               return materials::elastic_energy(sc, eps, gam, rho);
             };
-            ep[le] = disc::dg_element_forces(rp[le], xe, te, lf, xn, tn, law, fe, ge, fk, gk);
+            ep[le] = disc::dg_element_forces(rp[le], xe, te, lf, xn, tn, law, fe, ge, fk, gk, enm);
           }
           for (int i = 0; i < nx; ++i) fp[le * nx + i] = fe[i / 3][i % 3];
           for (int i = 0; i < nt; ++i) gp[le * nt + i] = ge[i / 3][i % 3];
           for (int k = 0; k < 3; ++k) {
-            double* out = flp + le * nflux + k * nflux_edge;
+            double* out = flp + le * ncols + k * nflux_edge;
             for (int j = 0; j < 3; ++j)
               for (int c = 0; c < 3; ++c) out[j * 3 + c] = fk[k][j][c];
             for (int j = 0; j < 2; ++j)
@@ -612,12 +682,12 @@ void ShellDynamics::Impl::compute_forces() {
     {
       auto s = flux_own->getLocalViewHost(Tpetra::Access::OverwriteAll);
       for (LocalId le = 0; le < no; ++le)
-        for (int i = 0; i < nflux; ++i) s(le, i) = flux[le * nflux + i];
+        for (int i = 0; i < nflux_cols; ++i) s(le, i) = flux[le * nflux_cols + i];
     }
     flux_ov->doImport(*flux_own, *dm.maps().importer, Tpetra::INSERT);
     auto s = flux_ov->getLocalViewHost(Tpetra::Access::ReadOnly);
     for (LocalId le = no; le < nov; ++le)
-      for (int i = 0; i < nflux; ++i) flux[le * nflux + i] = s(le, i);
+      for (int i = 0; i < nflux_cols; ++i) flux[le * nflux_cols + i] = s(le, i);
   }
   // 3. Interface kernel (penalty on intact interfaces), every local interface: writes its own slots.
   {
@@ -628,8 +698,11 @@ void ShellDynamics::Impl::compute_forces() {
     const double *xp = x.data(), *tp = t.data(), *bx = ibeta_x.data(), *bt = ibeta_t.data();
     double* fip = fi.data();
     double* eip = energy_i.data();
+    int* stp = istate.data();
+    const auto* cpp = cparams.data();
+    double *dmp = dmax.data(), *cnp = conormal.data(), *ucp = ucoh.data(), *dcp = dcoh.data();
     Kokkos::parallel_for(
-        "shellfrac::InterfacePenaltyForces", Kokkos::RangePolicy<exec>(0, static_cast<int>(ifs.size())),
+        "shellfrac::InterfaceForces", Kokkos::RangePolicy<exec>(0, static_cast<int>(ifs.size())),
         [=](const int i) {
           const auto& fc = ip[i];
           double xm[3][3], tm[2][3], xq[3][3], tq[2][3], fm[3][3], gm[2][3], fq[3][3], gq[2][3];
@@ -643,7 +716,17 @@ void ShellDynamics::Impl::compute_forces() {
               tm[j][c] = tp[fc.minus * nt + disc::edge_node(fc.minus_edge, j) * 3 + c];
               tq[j][c] = tp[fc.plus * nt + disc::edge_node(fc.plus_edge, j) * 3 + c];
             }
-          eip[i] = disc::dg_penalty_forces(irp[i], bx[i], bt[i], xm, tm, xq, tq, fm, gm, fq, gq);
+          if (stp[i] == intact) {
+            eip[i] = disc::dg_penalty_forces(irp[i], bx[i], bt[i], xm, tm, xq, tq, fm, gm, fq, gq);
+          } else {
+            // Activated: the cohesive law replaces the penalty (paper eqs. 53-54); a separated interface still
+            // evaluates it (zero tractions) so that its energies stay current.
+            eip[i] = 0;
+            const auto r = cohesive_interface_forces(irp[i], cpp[i], xm, tm, xq, tq, dmp + i * 3,
+                                                     reinterpret_cast<double(*)[3]>(cnp + i * 9), fm, gm, fq, gq);
+            ucp[i] = r.stored, dcp[i] = r.dissipated;
+            if (r.separated) stp[i] = separated;
+          }
           double* out = fip + i * 2 * nflux_edge;
           for (int j = 0; j < 3; ++j)
             for (int c = 0; c < 3; ++c) out[j * 3 + c] = fm[j][c], out[nflux_edge + j * 3 + c] = fq[j][c];
@@ -664,10 +747,11 @@ void ShellDynamics::Impl::compute_forces() {
     const auto& ifs = dm.interfaces();
     const auto* ip = ifs.data();
     const dist::DistributedMesh* d = &dm;
+    const int ncols = nflux_cols;
     Kokkos::parallel_for("shellfrac::GatherForces", Kokkos::RangePolicy<exec>(0, no), [=](const int le) {
       for (int k = 0; k < 3; ++k) {
         if (!lp[le][k]) continue;
-        const double* in = flp + d->neighbor(le, k) * nflux + d->neighbor_edge(le, k) * nflux_edge;
+        const double* in = flp + d->neighbor(le, k) * ncols + d->neighbor_edge(le, k) * nflux_edge;
         for (int j = 0; j < 3; ++j)
           for (int c = 0; c < 3; ++c) fp[le * nx + disc::edge_node(k, j) * 3 + c] += in[j * 3 + c];
         for (int j = 0; j < 2; ++j)
@@ -790,6 +874,10 @@ void ShellDynamics::step() {
   s.compute_forces();
   t0 = std::chrono::steady_clock::now();
   s.commit_plasticity();
+  if (s.fracture) {
+    ScopedTimer timer(s.times.nucleation);
+    s.nucleate();
+  }
   s.external_forces(t1);
   // Accelerations and corrector (steps 4-5); damping force alpha m v_pre.
   for (LocalId le = 0; le < s.no; ++le) {
@@ -965,6 +1053,22 @@ StepRecord ShellDynamics::record() const {
   r.reaction_work = ordered_sum(egid, std::vector<double>(s.work_react.begin(), s.work_react.begin() + s.no), s.dm.comm());
   r.damping = ordered_sum(egid, std::vector<double>(s.dissipated.begin(), s.dissipated.begin() + s.no), s.dm.comm());
   r.plastic_work = ordered_sum(egid, s.plastic_work, s.dm.comm());
+  if (s.fracture) {
+    std::vector<double> uc, dc, ai;
+    std::int64_t ncoh = 0, nsep = 0;
+    for (std::size_t i = 0; i < ifs.size(); ++i)
+      if (ifs[i].owned) {
+        uc.push_back(s.ucoh[i]), dc.push_back(s.dcoh[i]), ai.push_back(s.act_i[i]);
+        ncoh += s.istate[i] != intact, nsep += s.istate[i] == separated;
+      }
+    r.cohesive_energy = ordered_sum(igid, uc, s.dm.comm());
+    r.cohesive_dissipation = ordered_sum(igid, dc, s.dm.comm());
+    r.activation_loss = ordered_sum(igid, ai, s.dm.comm()) + ordered_sum(egid, s.act_e, s.dm.comm());
+    r.cohesive_edges = parallel::sum(ncoh, s.dm.comm());
+    r.separated_edges = parallel::sum(nsep, s.dm.comm());
+    s.update_fragments();
+    r.fragments = s.fragments;
+  }
   std::vector<std::vector<double>> lm(3, std::vector<double>(s.no, 0.0));
   for (LocalId le = 0; le < s.no; ++le) {
     for (int A = 0; A < 6; ++A) {
@@ -985,34 +1089,140 @@ StepRecord ShellDynamics::record() const {
 }
 
 std::vector<std::string> ShellDynamics::element_field_names() {
-  return {"eq_plastic_strain", "membrane_force", "bending_moment", "shear_force"};
+  return {"eq_plastic_strain", "membrane_force", "bending_moment", "shear_force", "damage", "fragment_id"};
+}
+
+// Calls f(q, w, eps, gam, rho, state) at each area point of owned element le for the current state: DG
+// kinematics with the element's current lift flags (ghosts are current after a step), strains, and the committed
+// plastic state (nullptr in elastic blocks); w = w_q j0_q. The resultants of the committed state are those the
+// last element kernel produced.
+template <class F>
+void ShellDynamics::Impl::area_points(LocalId le, F&& f) const {
+  double xe[6][3], te[3][3], xn[3][3][3] = {}, tn[3][2][3] = {};
+  bool lf[3];
+  element_inputs(dm, x.data(), t.data(), lift[le], le, xe, te, lf, xn, tn);
+  disc::ShellKinematics kin[nq];
+  const disc::DgElementRef& R = refs[le];
+  disc::dg_kinematics(R, xe, te, lf, xn, tn, kin);
+  for (int q = 0; q < nq; ++q) {
+    double eps[3], gam[2], rho[3];
+    disc::compute_strains(kin[q], R.ref[q], eps, gam, rho);
+    f(q, R.wj0[q], eps, gam, rho, plastic_el[le] ? &pstate[le * nq + q] : nullptr);
+  }
+}
+
+// Stored elastic energy of owned element le in the current state (frozen plastic strains).
+double ShellDynamics::Impl::element_energy(LocalId le) const {
+  double energy = 0;
+  const double zero[3] = {0, 0, 0};
+  area_points(le, [&](int, double w, const double* eps, const double* gam, const double* rho,
+                      const materials::PlasticState* st) {
+    energy += w * materials::elastic_energy(sect[le], eps, gam, rho, st ? st->eps_p : zero, st ? st->rho_p : zero);
+  });
+  return energy;
+}
+
+// Nucleation and activation (math.md §9.5-9.6; paper §5.1), after the forces at t_{n+1}: every local intact
+// breakable interface is checked with both sides' projected edge tractions (the ghosts' come with the flux
+// Import), so the two ranks that hold an interface take the same decision from the same numbers: the flag
+// needs no message of its own. An activated interface leaves the lifting of both sides and its penalty is
+// replaced by the cohesive law (delta_max = 0: no force until the faces move). The DG energy this releases
+// (its penalty energy, and the change of the neighbours' strain energy without the lifting, same
+// configuration, frozen plastic state) is booked as activation_loss.
+void ShellDynamics::Impl::nucleate() {
+  const auto& ifs = dm.interfaces();
+  std::vector<LocalId> changed;
+  for (std::size_t i = 0; i < ifs.size(); ++i) {
+    if (!breakable[i] || istate[i] != intact) continue;
+    const auto& fc = ifs[i];
+    double xm[3][3], tm[2][3], tq[2][3];
+    for (int j = 0; j < 3; ++j)
+      for (int c = 0; c < 3; ++c) xm[j][c] = x[fc.minus * nx + disc::edge_node(fc.minus_edge, j) * 3 + c];
+    for (int j = 0; j < 2; ++j)
+      for (int c = 0; c < 3; ++c) {
+        tm[j][c] = t[fc.minus * nt + disc::edge_node(fc.minus_edge, j) * 3 + c];
+        tq[j][c] = t[fc.plus * nt + disc::edge_node(fc.plus_edge, j) * 3 + c];
+      }
+    const auto* em = reinterpret_cast<const double(*)[6]>(&flux[fc.minus * nflux_cols + nflux + fc.minus_edge * 18]);
+    const auto* ep = reinterpret_cast<const double(*)[6]>(&flux[fc.plus * nflux_cols + nflux + fc.plus_edge * 18]);
+    double nu[3][3];
+    if (interface_nucleation(iref[i], cparams[i], xm, tm, tq, em, ep, nu) < 0) continue;
+    istate[i] = cparams[i].Gamma > 0 ? cohesive : separated;
+    for (int g = 0; g < 3; ++g) {
+      dmax[i * 3 + g] = 0;
+      for (int c = 0; c < 3; ++c) conormal[i * 9 + g * 3 + c] = nu[g][c];
+    }
+    act_i[i] += energy_i[i];
+    energy_i[i] = 0;
+    for (const auto& [le, k] : {std::pair{fc.minus, fc.minus_edge}, std::pair{fc.plus, fc.plus_edge}})
+      if (le < no) lift[le][k] = false, changed.push_back(le);
+  }
+  std::sort(changed.begin(), changed.end());
+  changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+  for (LocalId le : changed) {
+    const double after = element_energy(le);
+    act_e[le] += energy_e[le] - after;
+    energy_e[le] = after;
+  }
+}
+
+// Fragments: connected components of the elements through interfaces that are not fully separated, by
+// union-find over the global interface list (the same on every rank); recomputed only when the global number
+// of separated interfaces has changed. Collective.
+void ShellDynamics::Impl::update_fragments() const {
+  std::vector<GlobalId> mine;
+  const auto& ifs = dm.interfaces();
+  for (std::size_t i = 0; i < ifs.size(); ++i)
+    if (ifs[i].owned && istate[i] == separated) mine.push_back(ifs[i].gid);
+  const GlobalId count = parallel::sum(static_cast<std::int64_t>(mine.size()), dm.comm());
+  if (count == fragments_at) return;
+  auto cut = parallel::all_gather(mine, dm.comm());
+  std::sort(cut.begin(), cut.end());
+  const GlobalId ne = dm.num_global_elements();
+  fragment_root.resize(ne);
+  for (GlobalId e = 0; e < ne; ++e) fragment_root[e] = e;
+  const auto find = [&](GlobalId e) {
+    while (fragment_root[e] != e) e = fragment_root[e] = fragment_root[fragment_root[e]];
+    return e;
+  };
+  for (const auto& [gid, a, b] : all_interfaces) {
+    if (std::binary_search(cut.begin(), cut.end(), gid)) continue;
+    const GlobalId ra = find(a), rb = find(b);
+    if (ra != rb) fragment_root[std::max(ra, rb)] = std::min(ra, rb);  // the root is the smallest id
+  }
+  fragments = 0;
+  for (GlobalId e = 0; e < ne; ++e) {
+    fragment_root[e] = find(e);
+    fragments += fragment_root[e] == e;
+  }
+  fragments_at = count;
 }
 
 void ShellDynamics::element_fields(std::vector<std::vector<double>>& fields) const {
   const Impl& s = *impl_;
-  fields.assign(4, std::vector<double>(s.no, 0.0));
+  fields.assign(6, std::vector<double>(s.no, 0.0));
+  const double zero[3] = {0, 0, 0};
   for (LocalId le = 0; le < s.no; ++le) {
-    // The kinematics of the current state (ghosts are current after a step), the resultants of the committed
-    // plastic state: the same values the last element kernel produced.
-    double xe[6][3], te[3][3], xn[3][3][3] = {}, tn[3][2][3] = {};
-    bool lf[3];
-    element_inputs(s.dm, s.x.data(), s.t.data(), s.lift[le], le, xe, te, lf, xn, tn);
-    disc::ShellKinematics kin[nq];
-    const disc::DgElementRef& R = s.refs[le];
-    disc::dg_kinematics(R, xe, te, lf, xn, tn, kin);
-    for (int q = 0; q < nq; ++q) {
-      double eps[3], gam[2], rho[3], N[3], Q[2], M[3];
-      disc::compute_strains(kin[q], R.ref[q], eps, gam, rho);
-      const double zero[3] = {0, 0, 0};
-      const materials::PlasticState* st = s.plastic_el[le] ? &s.pstate[le * nq + q] : nullptr;
+    const double area = s.refs[le].area;
+    s.area_points(le, [&](int, double w, const double* eps, const double* gam, const double* rho,
+                          const materials::PlasticState* st) {
+      double N[3], Q[2], M[3];
       materials::elastic_resultants(s.sect[le], eps, gam, rho, st ? st->eps_p : zero, st ? st->rho_p : zero, N, Q, M);
-      const double w = R.wj0[q] / R.area;
-      fields[0][le] += w * (st ? st->alpha : 0.0);
-      fields[1][le] += w * vm_norm(N);
-      fields[2][le] += w * vm_norm(M);
-      fields[3][le] += w * std::sqrt(Q[0] * Q[0] + Q[1] * Q[1]);
+      fields[0][le] += w / area * (st ? st->alpha : 0.0);
+      fields[1][le] += w / area * vm_norm(N);
+      fields[2][le] += w / area * vm_norm(M);
+      fields[3][le] += w / area * std::sqrt(Q[0] * Q[0] + Q[1] * Q[1]);
+    });
+    for (const auto& [i, side] : s.incident[le]) {
+      double dmg = s.istate[i] == separated ? 1.0 : 0.0;
+      if (s.istate[i] == cohesive)
+        for (int g = 0; g < 3; ++g) dmg = std::max(dmg, std::min(1.0, s.dmax[i * 3 + g] / s.cparams[i].delta_f));
+      fields[4][le] = std::max(fields[4][le], dmg);
     }
   }
+  if (s.fracture) s.update_fragments();
+  for (LocalId le = 0; le < s.no; ++le)
+    fields[5][le] = s.fracture ? double(s.fragment_root[s.dm.element_gid(le)] + 1) : 1.0;
 }
 
 void ShellDynamics::nodal_fields(std::vector<Vec3>& displacement, std::vector<Vec3>& velocity,

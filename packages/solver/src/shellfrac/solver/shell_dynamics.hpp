@@ -30,6 +30,7 @@ struct Section {
   double E = 0, nu = 0, rho = 0, h = 0;
   bool plastic = false;  ///< resultant plasticity (math.md §4) with yield stress Y0 and hardening modulus H
   double Y0 = 0, H = 0;
+  double sigma_c = 0, Gamma = 0;  ///< cohesive strength (0 = unbreakable) and work of separation (math.md §9)
 };
 
 /// Everything the dynamics needs from the deck.
@@ -37,6 +38,7 @@ struct DynamicsSetup {
   std::vector<Section> block_sections;
   DiscretizationParams discretization;
   TimeParams time;
+  FractureParams fracture;
   std::vector<BoundaryCondition> boundary_conditions;
   std::vector<InitialVelocity> initial_velocities;
   std::vector<Load> loads;
@@ -52,6 +54,12 @@ struct StepRecord {
   double reaction_work = 0;   ///< work of the support reactions (prescribed motions)
   double damping = 0;         ///< energy dissipated by mass damping
   double plastic_work = 0;    ///< plastic work (dissipation + stored hardening energy), math.md §4.2
+  double cohesive_energy = 0;       ///< energy stored in the cohesive laws of activated edges (math.md §9.7)
+  double cohesive_dissipation = 0;  ///< energy dissipated by them (Gamma h h_e per fully separated edge)
+  double activation_loss = 0;       ///< DG energy (penalty + lifting) released when edges were activated (§9.6)
+  GlobalId cohesive_edges = 0;      ///< activated (cohesive or separated) edges
+  GlobalId separated_edges = 0;     ///< fully separated edges
+  GlobalId fragments = 1;           ///< connected pieces through edges that are not fully separated
   Vec3 angular_momentum{0, 0, 0};  ///< about the origin: sum m x × v + sum I t × tdot
 };
 
@@ -62,6 +70,7 @@ struct PhaseTimes {
   double gather = 0;     ///< gathering fluxes and interface forces into each element
   double exchange = 0;   ///< Tpetra Imports of positions/directors and of the flux buffers (incl. packing)
   double update = 0;     ///< predictor, director update, accelerations, corrector, checks
+  double nucleation = 0; ///< fracture: the nucleation check of intact edges and activation (part of update)
 };
 
 /// The explicit DG shell solver on one rank's part of the mesh.
@@ -97,9 +106,11 @@ class ShellDynamics {
   double bytes_per_element() const;
   /// Names of the element result fields written by element_fields (Exodus element variables).
   static std::vector<std::string> element_field_names();
-  /// Owned element fields, area-weighted means over the element's area points: equivalent plastic strain alpha,
-  /// von Mises norms of the membrane forces sqrt(N11^2 - N11 N22 + N22^2 + 3 N12^2) and of the moments (same
-  /// form), and |Q|. fields[k][le] for k in element_field_names() order.
+  /// Owned element fields: area-weighted means over the element's area points of the equivalent plastic strain
+  /// alpha, the von Mises norms of the membrane forces sqrt(N11^2 - N11 N22 + N22^2 + 3 N12^2) and of the moments
+  /// (same form), and |Q|; then the damage (max over the element's edges of delta_max/delta_f, 1 if separated)
+  /// and the fragment id (smallest element id + 1 of the element's fragment). fields[k][le] in
+  /// element_field_names() order. Collective (fragments).
   void element_fields(std::vector<std::vector<double>>& fields) const;
   /// Owned DG nodal fields, element-major as DistributedMesh::node_coords: displacement, velocity, director
   /// (P1: mid-side nodes show the mean of their edge's vertex directors).

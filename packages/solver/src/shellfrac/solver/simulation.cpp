@@ -83,6 +83,7 @@ Teuchos::RCP<const Teuchos::ParameterList> Deck::valid_parameters() {
   pl->set("Output", *OutputParams::valid_parameters(), "Results files");
   pl->set("Discretization", *DiscretizationParams::valid_parameters(), "DG stabilization constants");
   pl->set("Time Integration", *TimeParams::valid_parameters(), "Explicit central differences");
+  pl->set("Fracture", *FractureParams::valid_parameters(), "Extrinsic cohesive fracture on element edges");
   auto& bcs = pl->sublist("Boundary Conditions", false, "One sublist per condition, named freely");
   bcs.set("clamped end", *BoundaryCondition::valid_parameters());
   auto& ics = pl->sublist("Initial Conditions", false, "One sublist per initial velocity, named freely");
@@ -101,7 +102,7 @@ Deck Deck::read(const std::string& file, MPI_Comm comm) {
   // Top level: only the known sublists; user-named children of Blocks/Materials are validated one by one.
   Teuchos::ParameterList top("shellfrac");
   for (const char* name : {"Mesh", "Blocks", "Materials", "Partitioning", "Output", "Discretization",
-                           "Time Integration", "Boundary Conditions", "Initial Conditions", "Loads"})
+                           "Time Integration", "Fracture", "Boundary Conditions", "Initial Conditions", "Loads"})
     top.sublist(name);
   params::validate(pl, top, ctx);
   for (const char* name : {"Blocks", "Materials"})
@@ -134,6 +135,7 @@ Deck Deck::read(const std::string& file, MPI_Comm comm) {
       dist::PartitionParams::from_parameters(pl.sublist("Partitioning"), ctx / "Partitioning"));
   d.discretization = DiscretizationParams::from_parameters(pl.sublist("Discretization"), ctx / "Discretization");
   d.time = TimeParams::from_parameters(pl.sublist("Time Integration"), ctx / "Time Integration");
+  d.fracture = FractureParams::from_parameters(pl.sublist("Fracture"), ctx / "Fracture");
   auto& bcs = pl.sublist("Boundary Conditions");
   for (auto it = bcs.begin(); it != bcs.end(); ++it) {
     SHELLFRAC_INPUT_REQUIRE(bcs.entry(it).isList(), file << ": 'Boundary Conditions->" << bcs.name(it)
@@ -173,10 +175,12 @@ DynamicsSetup make_dynamics_setup(const Deck& deck, const mesh::SerialMesh& mesh
     const auto& sec = deck.blocks.at(b.name);
     const auto& mat = deck.materials.at(sec.material);
     setup.block_sections.push_back({mat.youngs_modulus, mat.poissons_ratio, mat.density, sec.thickness, mat.plastic(),
-                                    mat.yield_stress, mat.hardening_modulus});
+                                    mat.yield_stress, mat.hardening_modulus, mat.cohesive_strength,
+                                    mat.fracture_energy});
   }
   setup.discretization = deck.discretization;
   setup.time = deck.time;
+  setup.fracture = deck.fracture;
   setup.boundary_conditions = deck.boundary_conditions;
   setup.initial_velocities = deck.initial_velocities;
   setup.loads = deck.loads;
@@ -284,6 +288,9 @@ RunSummary Simulation::run() {
   columns.push_back("reaction_work");
   columns.push_back("damping_dissipation");
   columns.push_back("plastic_dissipation");
+  for (const char* c : {"cohesive_energy", "cohesive_dissipation", "activation_loss", "num_cohesive_edges",
+                        "num_separated_edges", "num_fragments"})
+    columns.push_back(c);
   for (const auto& bc : deck_.boundary_conditions)
     for (const char* q : {"_reaction_x", "_reaction_y", "_reaction_z", "_moment_x", "_moment_y", "_moment_z"})
       columns.push_back(bc.name + q);
@@ -303,14 +310,18 @@ RunSummary Simulation::run() {
   const double e0 = r0.kinetic + r0.strain + r0.penalty;
   auto write_history = [&] {
     const StepRecord r = dyn.record();
-    // Energy balance (math.md §9.7): K + U_el + U_stab + D_damp + W_p - (K0 + U0) - W_ext - W_react.
-    const double err = r.kinetic + r.strain + r.penalty + r.damping + r.plastic_work - e0 - r.external_work -
-                       r.reaction_work;
+    // Energy balance (math.md §9.7, Check 2): K + U_el + U_stab + D_damp + W_p + U_coh + D_coh + D_act
+    // - (K0 + U0) - W_ext - W_react.
+    const double err = r.kinetic + r.strain + r.penalty + r.damping + r.plastic_work + r.cohesive_energy +
+                       r.cohesive_dissipation + r.activation_loss - e0 - r.external_work - r.reaction_work;
     std::vector<double> row = {double(r.step), r.time, r.dt, r.kinetic, r.strain, r.penalty, r.external_work, err};
     for (double p : dyn.probes(probe_members_)) row.push_back(p);
     row.push_back(r.reaction_work);
     row.push_back(r.damping);
     row.push_back(r.plastic_work);
+    for (double v : {r.cohesive_energy, r.cohesive_dissipation, r.activation_loss, double(r.cohesive_edges),
+                     double(r.separated_edges), double(r.fragments)})
+      row.push_back(v);
     for (double f : dyn.reactions()) row.push_back(f);
     for (double l : r.angular_momentum) row.push_back(l);
     history.write_row(row);

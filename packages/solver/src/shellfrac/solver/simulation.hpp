@@ -41,6 +41,7 @@ struct Deck {
   OutputParams output;
   DiscretizationParams discretization;
   TimeParams time;
+  FractureParams fracture;
   std::vector<BoundaryCondition> boundary_conditions;
   std::vector<InitialVelocity> initial_velocities;
   std::vector<Load> loads;

@@ -1,0 +1,117 @@
+#pragma once
+/// \file cohesive_interface.hpp
+/// The fracture side of an interface element (paper §3, §5; math.md §9): the cohesive forces of an activated
+/// interface and the nucleation check of an intact one. Pure functions on plain arrays, usable in Kokkos
+/// kernels; they write only their own outputs.
+///
+/// Conventions (those of disc::dg_penalty_forces): the interface joins E- ("minus", whose edge points and
+/// reference data DgInterfaceRef holds) and E+ ("plus"); jumps are [[u]] = u^- - u^+; inputs are the edge
+/// nodes of each side in its own edge-local order. The unit co-normal nu is the CURRENT outward co-normal of
+/// E+ (math.md §9.1 CHOICE: objective under large rotations): nu = normalize(dbar x tau-), with tau- the
+/// current edge tangent of E- (its counter-clockwise direction, opposite to E+'s) and dbar the normalized
+/// mean of the two directors. An opening of E- away from E+ is then delta_N = [[phi]] . nu > 0.
+#include <Kokkos_Macros.hpp>
+#include <cmath>
+
+#include "shellfrac/disc/dg_element.hpp"
+#include "shellfrac/disc/small_tensor.hpp"
+#include "shellfrac/materials/cohesive_law.hpp"
+
+namespace shellfrac::solver {
+
+/// d/ds of the quadratic edge shape values (disc::edge_shape_p2), edge-local order (vertex, vertex, mid-side).
+KOKKOS_INLINE_FUNCTION void edge_shape_p2_derivative(double s, double dn[3]) {
+  dn[0] = 4 * s - 3;
+  dn[1] = 4 * s - 1;
+  dn[2] = 4 - 8 * s;
+}
+
+/// Current unit co-normal nu (outward of E+) at edge point g of an interface (math.md §9.1). Returns false
+/// if the faces are degenerate (|dbar x tau| < 1e-8); nu is then left unchanged (the caller keeps its last one).
+KOKKOS_INLINE_FUNCTION bool interface_conormal(const disc::DgInterfaceRef& I, int g, const double xm[3][3],
+                                               const double tm[2][3], const double tp[2][3], double nu[3]) {
+  const double s = disc::edge3_rule.s[g];
+  const disc::EdgePointShapes sh = disc::edge_point_shapes(s, I.s_plus[g]);
+  double dn[3], tau[3] = {0, 0, 0}, dbar[3] = {0, 0, 0}, n[3];
+  edge_shape_p2_derivative(s, dn);
+  for (int c = 0; c < 3; ++c) {
+    for (int j = 0; j < 3; ++j) tau[c] += dn[j] * xm[j][c];
+    for (int j = 0; j < 2; ++j) dbar[c] += sh.p1[j] * tm[j][c] + sh.p1_other[j] * tp[j][c];
+  }
+  disc::normalize3(tau);
+  disc::normalize3(dbar);
+  disc::cross3(dbar, tau, n);
+  const double len = disc::norm3(n);
+  if (!(len >= 1e-8)) return false;
+  for (int c = 0; c < 3; ++c) nu[c] = n[c] / len;
+  return true;
+}
+
+/// Energies and state of a cohesive interface after one evaluation.
+struct CohesiveInterfaceResult {
+  double stored = 0;      ///< sum_g omega_g phi_g (math.md §9.7)
+  double dissipated = 0;  ///< sum_g omega_g D_g
+  bool separated = true;  ///< every edge point is fully separated (the interface carries nothing any more)
+};
+
+/// Cohesive forces of an activated interface (math.md §9.4; SEED eqs. 55-56): at each edge point the jumps,
+/// the current co-normal (nu[g] keeps the last good one), the tractions n_c, m_c of the cohesive law with
+/// delta_max[g] updated in place, and the nodal forces
+///   f^A(-) += omega_g n_c N^A_-,  f^A(+) -= omega_g n_c N^A_+,  g^a(-) += omega_g m_c L^a_-,  g^a(+) -= ...
+/// (internal forces: they resist the jump). Outputs are overwritten.
+KOKKOS_INLINE_FUNCTION CohesiveInterfaceResult cohesive_interface_forces(
+    const disc::DgInterfaceRef& I, const materials::CohesiveParams& p, const double xm[3][3], const double tm[2][3],
+    const double xp[3][3], const double tp[2][3], double delta_max[disc::num_edge_points],
+    double nu[disc::num_edge_points][3], double fm[3][3], double gm[2][3], double fp[3][3], double gp[2][3]) {
+  for (int j = 0; j < 3; ++j) fm[j][0] = fm[j][1] = fm[j][2] = fp[j][0] = fp[j][1] = fp[j][2] = 0;
+  for (int j = 0; j < 2; ++j) gm[j][0] = gm[j][1] = gm[j][2] = gp[j][0] = gp[j][1] = gp[j][2] = 0;
+  CohesiveInterfaceResult r;
+  for (int g = 0; g < disc::num_edge_points; ++g) {
+    const disc::EdgePointShapes sh = disc::edge_point_shapes(disc::edge3_rule.s[g], I.s_plus[g]);
+    double jx[3], jt[3], nc[3], mc[3];
+    for (int c = 0; c < 3; ++c) {
+      jx[c] = 0, jt[c] = 0;
+      for (int j = 0; j < 3; ++j) jx[c] += sh.p2[j] * xm[j][c] - sh.p2_other[j] * xp[j][c];
+      for (int j = 0; j < 2; ++j) jt[c] += sh.p1[j] * tm[j][c] - sh.p1_other[j] * tp[j][c];
+    }
+    interface_conormal(I, g, xm, tm, tp, nu[g]);
+    const materials::CohesiveResult cr = materials::cohesive_tractions(p, jx, jt, nu[g], delta_max[g], nc, mc);
+    r.stored += I.omega[g] * cr.stored;
+    r.dissipated += I.omega[g] * cr.dissipated;
+    r.separated = r.separated && cr.separated;
+    for (int c = 0; c < 3; ++c) {
+      for (int j = 0; j < 3; ++j) fm[j][c] += I.omega[g] * nc[c] * sh.p2[j], fp[j][c] -= I.omega[g] * nc[c] * sh.p2_other[j];
+      for (int j = 0; j < 2; ++j) gm[j][c] += I.omega[g] * mc[c] * sh.p1[j], gp[j][c] -= I.omega[g] * mc[c] * sh.p1_other[j];
+    }
+  }
+  return r;
+}
+
+/// Nucleation check of an intact interface (math.md §9.5; SEED eqs. 27-31, 51): the average of the two sides'
+/// edge tractions, n = (t^+ - t^-)/2 with t^E the traction on element E across its edge from its projected
+/// resultants (disc::dg_element_forces edge_nm output: [g][0..2] force, [3..5] couple, in E's own edge-point
+/// order), the equivalent traction with the current nu, and the edge average
+///   fbar = (1/h_e) sum_g omega_g (n_eq,g / S0 - 1).
+/// edge_minus[g], edge_plus[g']: the two sides' values; the plus side's point matched with the minus side's
+/// point g is g' = g if its parameter s_plus[g] equals edge3_rule.s[g], else 2 - g (a symmetric rule).
+/// nu (out) is the co-normal at each point (kept if degenerate). Returns fbar; the edge activates if fbar >= 0.
+KOKKOS_INLINE_FUNCTION double interface_nucleation(const disc::DgInterfaceRef& I, const materials::CohesiveParams& p,
+                                                   const double xm[3][3], const double tm[2][3], const double tp[2][3],
+                                                   const double edge_minus[disc::num_edge_points][6],
+                                                   const double edge_plus[disc::num_edge_points][6],
+                                                   double nu[disc::num_edge_points][3]) {
+  double fbar = 0;
+  for (int g = 0; g < disc::num_edge_points; ++g) {
+    const int gq = std::abs(I.s_plus[g] - disc::edge3_rule.s[g]) < 1e-12 ? g : disc::num_edge_points - 1 - g;
+    double n[3], m[3];
+    for (int c = 0; c < 3; ++c) {
+      n[c] = 0.5 * (edge_plus[gq][c] - edge_minus[g][c]);
+      m[c] = 0.5 * (edge_plus[gq][3 + c] - edge_minus[g][3 + c]);
+    }
+    interface_conormal(I, g, xm, tm, tp, nu[g]);
+    fbar += I.omega[g] * (materials::equivalent_traction(p, n, m, nu[g]) / p.S0 - 1.0);
+  }
+  return fbar * I.inv_he;
+}
+
+}  // namespace shellfrac::solver

@@ -1,0 +1,166 @@
+// Extrinsic cohesive fracture in the explicit solver (issue #5), each check with its reference:
+//  * StripWithOneCohesiveEdge: benchmarks.md §5.2 (closed form, derived there). A strip x in [0, 2L]
+//    (nu = 0, so the membrane wave speed is c = sqrt(E/rho) exactly) whose only breakable edge is at x = L
+//    has both ends pulled outward at V from t = 0. The tension waves Z V (Z = rho c) meet at x = L at
+//    t0 = L/c; with 2 Z V > sigma_c > Z V the edge activates then, and the cohesive law
+//    T = sigma_c (1 - delta/delta_c) separates it completely at
+//      t_sep = t0 + (Z delta_c / (2 sigma_c)) ln[2 Z V / (2 Z V - sigma_c)],  delta_c = 2 Gamma / sigma_c.
+//    Asserted: activation and separation times within 2 % of the closed form (the issue's tolerance, on the
+//    times measured from t = 0), the dissipated energy of the separated edge = Gamma h b to 1e-6 relative
+//    (math.md §9.7), the energy balance within 1 % of the input work, and — no artificial compliance — the
+//    history before activation is bitwise the history of the same strip that cannot break.
+//  * SameBreaksOnAnyRankCount: a clamped 6061-T6 beam (paper §6.3 data, Gamma = 0) hit at 225 m/s shears off
+//    at its supports within microseconds; on np ranks the history (edge and fragment counts, every energy)
+//    and every Exodus value (fields incl. damage and fragment_id; not the rank) equal a serial run bitwise.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <cmath>
+#include <string>
+
+#include "deck_test_util.hpp"
+#include "serial_compare.hpp"
+#include "shellfrac/core/parallel.hpp"
+#include "shellfrac/mesh/generators.hpp"
+#include "shellfrac/meshio/exodus_mesh_io.hpp"
+#include "shellfrac/solver/simulation.hpp"
+
+using namespace shellfrac;
+using namespace shellfrac::test;
+
+namespace {
+
+// Seed Table 3 material (6061-T6) with Gamma = 10 kJ/m^2, V = 20 m/s: benchmarks.md §5.2 example
+// (c0 = 5058 m/s, Z = 1.362e7 Pa s/m, 2 Z V = 545 MPa > sigma_c = 375 MPa, delta_c = 53.3 um, t_sep - t0 = 1.13 us).
+constexpr double E = 68.9e9, rho = 2693, sigma_c = 375e6, Gamma = 10e3, V = 20;
+constexpr double L = 0.05, b = 0.001, h = 0.001;
+constexpr int cells = 100;  // along 2L: 1 mm elements
+
+/// Writes the strip mesh: Rectangle [0, 2L] x [0, b], node sets "crack" (x = L) and "quarter" (x = L/2), side
+/// set "crack" (the edges at x = L, from the left elements).
+void write_strip(const std::string& path) {
+  auto m = mesh::make_rectangle(2 * L, b, cells, 1, mesh::DiagonalPattern::Right);
+  mesh::NodeSet crack{"crack", 10, {}}, quarter{"quarter", 11, {}};
+  for (GlobalId n = 0; n < m.num_nodes(); ++n) {
+    if (std::abs(m.coords[n][0] - L) < 1e-9) crack.nodes.push_back(n);
+    if (std::abs(m.coords[n][0] - L / 2) < 1e-9) quarter.nodes.push_back(n);
+  }
+  mesh::SideSet edges{"crack", 10, {}, {}};
+  for (GlobalId e = 0; e < m.num_elements(); ++e)
+    for (int k = 0; k < 3; ++k) {
+      const auto& a = m.coords[m.node(e, k)];
+      const auto& c = m.coords[m.node(e, (k + 1) % 3)];
+      const auto& o = m.coords[m.node(e, (k + 2) % 3)];
+      if (std::abs(a[0] - L) < 1e-9 && std::abs(c[0] - L) < 1e-9 && o[0] < L) {
+        edges.elements.push_back(e);
+        edges.local_edges.push_back(k);
+      }
+    }
+  m.node_sets.push_back(crack);
+  m.node_sets.push_back(quarter);
+  m.side_sets.push_back(edges);
+  mesh::promote_to_p2(m);
+  if (parallel::rank() == 0) meshio::write_exodus_mesh(m, path);
+  MPI_Barrier(MPI_COMM_WORLD);
+}
+
+std::string strip_deck(const std::string& dir, double strength) {
+  const std::string body =
+      "<ParameterList name=\"Time Integration\"><Parameter name=\"End Time\" type=\"double\" value=\"14e-6\"/>"
+      "</ParameterList>\n"
+      "<ParameterList name=\"Fracture\"><Parameter name=\"Edges\" type=\"string\" value=\"crack\"/></ParameterList>\n"
+      "<ParameterList name=\"Boundary Conditions\">"
+      "<ParameterList name=\"left\"><Parameter name=\"Type\" type=\"string\" value=\"Prescribed Velocity\"/>"
+      "<Parameter name=\"Node Set\" type=\"string\" value=\"x_min\"/>"
+      "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{-20.0, 0.0, 0.0}\"/></ParameterList>"
+      "<ParameterList name=\"right\"><Parameter name=\"Type\" type=\"string\" value=\"Prescribed Velocity\"/>"
+      "<Parameter name=\"Node Set\" type=\"string\" value=\"x_max\"/>"
+      "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{20.0, 0.0, 0.0}\"/></ParameterList>"
+      "</ParameterList>\n";
+  const std::string mesh_xml =
+      "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"File\"/>"
+      "<Parameter name=\"File\" type=\"string\" value=\"strip_mesh.exo\"/></ParameterList>\n";
+  std::string text = deck(mesh_xml, body, dir, "{crack, quarter}", {h, rho, E, 0.0});
+  const std::string at = "<Parameter name=\"Density\"";
+  text.replace(text.find(at), 0,
+               "<Parameter name=\"Cohesive Strength\" type=\"double\" value=\"" + xml_double(strength) +
+                   "\"/><Parameter name=\"Fracture Energy\" type=\"double\" value=\"" +
+                   xml_double(strength > 0 ? Gamma : 0.0) + "\"/>");
+  return text;
+}
+
+}  // namespace
+
+TEST(Fracture, StripWithOneCohesiveEdge) {
+  const auto dir = work_dir("fracture_strip");
+  write_strip(dir + "/strip_mesh.exo");
+  write_file(dir + "/strip.xml", strip_deck(dir, sigma_c));
+  write_file(dir + "/intact.xml", strip_deck(dir, 0.0));
+  solver::Simulation sim(dir + "/strip.xml");
+  sim.run();
+  solver::Simulation intact(dir + "/intact.xml");
+  intact.run();
+  std::vector<std::string> hd, hi;
+  const auto rows = read_history(sim.history_path(), hd);
+  const auto rows_intact = read_history(intact.history_path(), hi);
+  const auto ct = column(hd, "time"), cc = column(hd, "num_cohesive_edges"), cs = column(hd, "num_separated_edges");
+  ASSERT_LT(cs, hd.size());
+  const double c = std::sqrt(E / rho), Z = rho * c, t0 = L / c, delta_c = 2 * Gamma / sigma_c;
+  const double t_sep = t0 + Z * delta_c / (2 * sigma_c) * std::log(2 * Z * V / (2 * Z * V - sigma_c));
+  double t_act = -1, t_broken = -1;
+  for (const auto& r : rows) {
+    if (t_act < 0 && r[cc] > 0) t_act = r[ct];
+    if (t_broken < 0 && r[cs] > 0) t_broken = r[ct];
+  }
+  std::printf("activation at %.4g s (closed form %.4g), separation at %.4g s (closed form %.4g)\n", t_act, t0,
+              t_broken, t_sep);
+  ::testing::Test::RecordProperty("t_activation", std::to_string(t_act));
+  ::testing::Test::RecordProperty("t_separation", std::to_string(t_broken));
+  EXPECT_NEAR(t_act, t0, 0.02 * t0);
+  EXPECT_NEAR(t_broken, t_sep, 0.02 * t_sep);
+  // Only the one edge (1 cell across: one interface) breaks, into two fragments.
+  EXPECT_EQ(rows.back()[cs], 1.0);
+  EXPECT_EQ(rows.back()[column(hd, "num_fragments")], 2.0);
+  EXPECT_NEAR(rows.back()[column(hd, "cohesive_dissipation")], Gamma * h * b, 1e-6 * Gamma * h * b);
+  EXPECT_EQ(rows.back()[column(hd, "cohesive_energy")], 0.0);
+  const double input = rows.back()[column(hd, "reaction_work")];
+  for (const auto& r : rows) EXPECT_LE(std::abs(r[column(hd, "energy_balance_error")]), 0.01 * input) << "t = " << r[ct];
+  // No artificial compliance: until the edge activates, the run is the intact strip's, bitwise.
+  ASSERT_EQ(hd, hi);
+  std::size_t compared = 0;
+  for (std::size_t k = 0; k < rows.size() && rows[k][ct] < t_act; ++k, ++compared)
+    for (std::size_t j = 0; j < column(hd, "cohesive_energy"); ++j)
+      EXPECT_EQ(rows[k][j], rows_intact[k][j]) << hd[j] << " at t = " << rows[k][ct];
+  EXPECT_GT(compared, 50u);
+}
+
+TEST(Fracture, SameBreaksOnAnyRankCount) {
+  const auto dir = work_dir("fracture_beam");
+  const std::string body =
+      "<ParameterList name=\"Time Integration\"><Parameter name=\"End Time\" type=\"double\" value=\"3e-5\"/>"
+      "<Parameter name=\"History Interval\" type=\"int\" value=\"5\"/>"
+      "<Parameter name=\"Output Interval\" type=\"double\" value=\"1e-5\"/></ParameterList>\n"
+      "<ParameterList name=\"Boundary Conditions\">"
+      "<ParameterList name=\"left\"><Parameter name=\"Type\" type=\"string\" value=\"Clamped\"/>"
+      "<Parameter name=\"Node Set\" type=\"string\" value=\"x_min\"/></ParameterList>"
+      "<ParameterList name=\"right\"><Parameter name=\"Type\" type=\"string\" value=\"Clamped\"/>"
+      "<Parameter name=\"Node Set\" type=\"string\" value=\"x_max\"/></ParameterList></ParameterList>\n"
+      "<ParameterList name=\"Initial Conditions\"><ParameterList name=\"impulse\">"
+      "<Parameter name=\"Elements\" type=\"string\" value=\"all\"/>"
+      "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{0.0, 0.0, -225.0}\"/></ParameterList></ParameterList>\n";
+  std::string text = deck(rectangle_mesh(0.2, 0.025, 40, 5), body, dir, "{}", {6.53e-3, 2693, 68.9e9, 0.343});
+  text.replace(text.find("<Parameter name=\"Density\""), 0,
+               "<Parameter name=\"Model\" type=\"string\" value=\"Resultant Plasticity\"/>"
+               "<Parameter name=\"Yield Stress\" type=\"double\" value=\"275e6\"/>"
+               "<Parameter name=\"Hardening Modulus\" type=\"double\" value=\"1.33e9\"/>"
+               "<Parameter name=\"Cohesive Strength\" type=\"double\" value=\"375e6\"/>");
+  write_file(dir + "/beam.xml", text);
+  solver::Simulation sim(dir + "/beam.xml");
+  sim.run();
+  MPI_Barrier(MPI_COMM_WORLD);
+  std::vector<std::string> hd;
+  const auto rows = read_history(sim.history_path(), hd);
+  EXPECT_GT(rows.back()[column(hd, "num_separated_edges")], 4.0) << "the beam must shear off at its supports";
+  EXPECT_GT(rows.back()[column(hd, "num_fragments")], 2.0);
+  expect_same_as_serial(sim, text, dir, "beam");
+}
