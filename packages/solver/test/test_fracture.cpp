@@ -125,6 +125,19 @@ TEST(Fracture, StripWithOneCohesiveEdge) {
   EXPECT_EQ(rows.back()[column(hd, "cohesive_energy")], 0.0);
   const double input = rows.back()[column(hd, "reaction_work")];
   for (const auto& r : rows) EXPECT_LE(std::abs(r[column(hd, "energy_balance_error")]), 0.01 * input) << "t = " << r[ct];
+  // Fragment table at the last output: the two halves, each of mass rho h L b, moving apart symmetrically.
+  std::vector<std::string> hf;
+  const auto frags = read_history(sim.fragments_path(), hf);
+  ASSERT_GE(frags.size(), 2u);
+  const auto& f1 = frags[frags.size() - 2];
+  const auto& f2 = frags.back();
+  ASSERT_EQ(f1[0], f2[0]) << "the last two rows are the last output time";
+  const double half = rho * h * L * b;
+  EXPECT_NEAR(f1[column(hf, "mass")], half, 1e-12 * half);
+  EXPECT_NEAR(f2[column(hf, "mass")], half, 1e-12 * half);
+  EXPECT_NEAR(f1[column(hf, "com_x")] + f2[column(hf, "com_x")], 2 * L, 1e-9 * L);
+  EXPECT_LT(f1[column(hf, "momentum_x")], 0.0);
+  EXPECT_NEAR(f1[column(hf, "momentum_x")] + f2[column(hf, "momentum_x")], 0.0, 1e-9 * half * V);
   // No artificial compliance: until the edge activates, the run is the intact strip's, bitwise.
   ASSERT_EQ(hd, hi);
   std::size_t compared = 0;

@@ -1198,6 +1198,40 @@ void ShellDynamics::Impl::update_fragments() const {
   fragments_at = count;
 }
 
+bool ShellDynamics::fracture() const { return impl_->fracture; }
+
+std::vector<std::vector<double>> ShellDynamics::fragment_table() const {
+  const Impl& s = *impl_;
+  if (s.fracture) s.update_fragments();
+  constexpr int nv = 9;  // element gid, fragment root, m, m x (3), m v (3)
+  std::vector<double> mine(s.no * nv, 0.0);
+  for (LocalId le = 0; le < s.no; ++le) {
+    double* r = &mine[le * nv];
+    const GlobalId gid = s.dm.element_gid(le);
+    r[0] = double(gid), r[1] = s.fracture ? double(s.fragment_root[gid]) : 0.0;
+    for (int A = 0; A < 6; ++A) {
+      const double m = s.mass[le * 6 + A];
+      r[2] += m;
+      for (int c = 0; c < 3; ++c) r[3 + c] += m * s.x[le * nx + A * 3 + c], r[6 + c] += m * s.v[le * nx + A * 3 + c];
+    }
+  }
+  const auto all = parallel::all_gather(mine, s.dm.comm());
+  std::vector<std::size_t> order(all.size() / nv);
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return all[a * nv] < all[b * nv]; });
+  std::map<GlobalId, std::vector<double>> frag;  // root -> {elements, m, m x, m v}
+  for (std::size_t i : order) {
+    auto& f = frag[GlobalId(all[i * nv + 1])];
+    f.resize(8, 0.0);
+    f[0] += 1;
+    for (int k = 0; k < 7; ++k) f[1 + k] += all[i * nv + 2 + k];
+  }
+  std::vector<std::vector<double>> rows;
+  for (const auto& [root, f] : frag)
+    rows.push_back({double(root + 1), f[0], f[1], f[2] / f[1], f[3] / f[1], f[4] / f[1], f[5], f[6], f[7]});
+  return rows;
+}
+
 void ShellDynamics::element_fields(std::vector<std::vector<double>>& fields) const {
   const Impl& s = *impl_;
   fields.assign(6, std::vector<double>(s.no, 0.0));

@@ -112,6 +112,12 @@ class ShellDynamics {
   /// and the fragment id (smallest element id + 1 of the element's fragment). fields[k][le] in
   /// element_field_names() order. Collective (fragments).
   void element_fields(std::vector<std::vector<double>>& fields) const;
+  /// Whether any edge of the mesh may break (Fracture; the same on every rank).
+  bool fracture() const;
+  /// One row per fragment, in increasing fragment id: {fragment id (smallest element id + 1), elements, mass,
+  /// centre of mass x/y/z, momentum x/y/z}, summed over elements in global-id order (rank-count independent).
+  /// Collective; the rows are the same on every rank.
+  std::vector<std::vector<double>> fragment_table() const;
   /// Owned DG nodal fields, element-major as DistributedMesh::node_coords: displacement, velocity, director
   /// (P1: mid-side nodes show the mean of their edge's vertex directors).
   void nodal_fields(std::vector<Vec3>& displacement, std::vector<Vec3>& velocity, std::vector<Vec3>& director) const;

@@ -252,6 +252,11 @@ std::string Simulation::exodus_path() const {
   return (o.directory.empty() ? std::string() : o.directory + "/") + o.base_name + ".exo";
 }
 
+std::string Simulation::fragments_path() const {
+  const auto& o = deck_.output;
+  return (o.directory.empty() ? std::string() : o.directory + "/") + o.base_name + "_fragments.csv";
+}
+
 std::string Simulation::history_path() const {
   const auto& o = deck_.output;
   return (o.directory.empty() ? std::string() : o.directory + "/") + o.base_name + "_history.csv";
@@ -278,7 +283,12 @@ RunSummary Simulation::run() {
   }
   // Results of an earlier run with another rank count would sit beside ours and confuse ParaView (which
   // opens a per-rank set from any of its files): remove <base>.exo and every <base>.exo.<n>.<r> first.
-  parallel::on_root_then_agree([&] { remove_stale_results(exodus_path()); }, 0, comm_);
+  parallel::on_root_then_agree(
+      [&] {
+        remove_stale_results(exodus_path());
+        std::filesystem::remove(fragments_path());  // a fragment table of an earlier run would be misleading
+      },
+      0, comm_);
   io::ExodusResultsWriter exo(exodus_path(), layout, comm_);
   std::vector<std::string> columns = {"step",          "time",          "dt",
                                       "kinetic_energy", "strain_energy", "penalty_energy",
@@ -299,7 +309,19 @@ RunSummary Simulation::run() {
   auto& dyn = *dynamics_;
   std::vector<std::vector<Vec3>> nodal(3);
   std::vector<std::vector<double>> fields;
+  // Fracture runs: a row per fragment at every output time.
+  std::unique_ptr<io::HistoryWriter> fragment_csv;
+  if (dyn.fracture())
+    fragment_csv = std::make_unique<io::HistoryWriter>(
+        fragments_path(), std::vector<std::string>{"time", "fragment_id", "elements", "mass", "com_x", "com_y", "com_z",
+                                                   "momentum_x", "momentum_y", "momentum_z"},
+        comm_);
   auto write_output = [&] {
+    if (fragment_csv)
+      for (auto row : dyn.fragment_table()) {
+        row.insert(row.begin(), dyn.time());
+        fragment_csv->write_row(row);
+      }
     dyn.nodal_fields(nodal[0], nodal[1], nodal[2]);
     dyn.element_fields(fields);
     element.resize(2);
@@ -350,6 +372,7 @@ RunSummary Simulation::run() {
   const int np = parallel::size(comm_);
   summary_.files = {np == 1 ? exodus_path() : io::rank_file_name(exodus_path(), np, 0) + " ... (" + std::to_string(np) + " files)",
                     history_path()};
+  if (dynamics_->fracture()) summary_.files.push_back(fragments_path());
   return summary_;
 }
 

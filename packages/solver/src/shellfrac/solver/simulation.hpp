@@ -85,6 +85,8 @@ class Simulation {
   /// Path of the Exodus results (the per-rank set's base name when np > 1).
   std::string exodus_path() const;
   std::string history_path() const;
+  /// <dir>/<base>_fragments.csv: one row per fragment at each output time (fracture runs only).
+  std::string fragments_path() const;
 
  private:
   MPI_Comm comm_;
