@@ -27,6 +27,7 @@ const char* usage =
     "\n"
     "options:\n"
     "  --check                          validate the deck, build the mesh and partition, write nothing\n"
+    "  --restart FILE                   continue from the checkpoint FILE (overrides Checkpoint->Restart From)\n"
     "  --print-valid-parameters [FILE]  write a documented XML deck with every parameter and its default\n"
     "  --help                           this text\n"
     "  --version                        version\n"
@@ -34,13 +35,16 @@ const char* usage =
     "Results go to the current directory unless the deck's Output sublist says otherwise:\n"
     "  <deck>.exo (np = 1) or the per-rank set <deck>.exo.<np>.<rank> (np > 1), and <deck>_history.csv.\n"
     "Run in parallel with: mpirun -np N shellfrac DECK.xml\n"
-    "Input reference: docs/input_reference.xml (the output of --print-valid-parameters).\n";
+    "Input reference: docs/input_reference.xml (the output of --print-valid-parameters).\n"
+    "Signals: SIGUSR1 writes a checkpoint and continues; SIGTERM writes a checkpoint and the last results, then\n"
+    "stops with exit code 4 (restart with --restart). Exit codes: 0 done, 1 input error, 2 usage error,\n"
+    "3 internal error or numerical blow-up, 4 stopped by SIGTERM after a checkpoint.\n";
 
 int run(int argc, char** argv) {
   const bool root = shellfrac::parallel::rank() == 0;
   std::vector<std::string> args(argv + 1, argv + argc);
   bool check = false;
-  std::string deck;
+  std::string deck, restart;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a == "--help" || a == "-h") {
@@ -65,6 +69,12 @@ int run(int argc, char** argv) {
       return 0;
     } else if (a == "--check") {
       check = true;
+    } else if (a == "--restart") {
+      if (i + 1 >= args.size()) {
+        if (root) std::cerr << "shellfrac: error: --restart needs a checkpoint file\n\n" << usage;
+        return 2;
+      }
+      restart = args[++i];
     } else if (!a.empty() && a[0] == '-') {
       if (root) std::cerr << "shellfrac: error: unknown option '" << a << "'\n\n" << usage;
       return 2;
@@ -79,7 +89,7 @@ int run(int argc, char** argv) {
     if (root) std::cerr << "shellfrac: error: no input deck given\n\n" << usage;
     return 2;
   }
-  shellfrac::solver::Simulation sim(deck);
+  shellfrac::solver::Simulation sim(deck, MPI_COMM_WORLD, restart);
   const auto& s = sim.summary();
   if (root) {
     std::cout << "shellfrac 0.1.0: " << deck << " on " << shellfrac::parallel::size() << " rank(s)\n"
@@ -101,8 +111,9 @@ int run(int argc, char** argv) {
                 << 1e6 * out.wall_seconds / (double(out.steps) * double(out.elements)) << " us per element-step on "
                 << shellfrac::parallel::size() << " rank(s))\n";
     for (const auto& f : out.files) std::cout << "  wrote " << f << "\n";
+    if (out.stopped_by_signal) std::cout << "  stopped by SIGTERM at step " << sim.summary().steps << "; continue with --restart\n";
   }
-  return 0;
+  return out.stopped_by_signal ? 4 : 0;
 }
 
 }  // namespace

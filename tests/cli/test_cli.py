@@ -8,9 +8,11 @@ usage: test_cli.py SOURCE_DIR SHELLFRAC MESHTOOL MPIEXEC [MPIEXEC_PREFLAGS...]
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 
 SRC, SHELLFRAC, MESHTOOL, MPIEXEC = sys.argv[1:5]
@@ -110,6 +112,54 @@ class Shellfrac(unittest.TestCase):
         r = run([SHELLFRAC, deck], cwd=self.dir)
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertEqual(sorted(os.listdir(self.dir)), ["run.exo", "run.xml", "run_history.csv"])
+
+    def test_sigterm_writes_a_checkpoint_and_the_run_restarts_from_it(self):
+        # Issue #6: SIGTERM (a batch system's warning) leaves a readable checkpoint and Exodus file and exit
+        # code 4; --restart continues from it.
+        deck = self.deck("long.xml", ('name="End Time" type="double" value="8.8e-5"',
+                                      'name="End Time" type="double" value="1.0"'))
+        proc = subprocess.Popen([SHELLFRAC, deck], cwd=self.dir, env=ENV, stdout=subprocess.PIPE,
+                                stderr=subprocess.PIPE, text=True)
+        history = os.path.join(self.dir, "long_history.csv")
+        for _ in range(600):  # wait until it is stepping (a few history rows)
+            if os.path.exists(history) and sum(1 for _ in open(history)) > 5:
+                break
+            time.sleep(0.1)
+        proc.send_signal(signal.SIGTERM)
+        out, err = proc.communicate(timeout=120)
+        self.assertEqual(proc.returncode, 4, err)
+        self.assertIn("stopped by SIGTERM", out)
+        self.assertTrue(os.path.exists(os.path.join(self.dir, "long_checkpoint.h5")))
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "long_checkpoint.h5.tmp")))
+        rows = sum(1 for _ in open(history))
+        # the Exodus file is complete enough to read back: compare it with itself
+        exo = os.path.join(self.dir, "long.exo")
+        r = run([os.path.join(os.path.dirname(MESHTOOL), "..", "exotools", "shellfrac_exocompare"), exo, exo])
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        # restart with a short end time: continues from the checkpoint's step and appends to the history
+        text = open(deck).read().replace('value="1.0"', 'value="9e-5"')
+        with open(deck, "w") as f:
+            f.write(text)
+        r = run([SHELLFRAC, deck, "--restart", os.path.join(self.dir, "long_checkpoint.h5")], cwd=self.dir)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertGreaterEqual(sum(1 for _ in open(history)), rows)
+        self.assertTrue(any(f.startswith("long.restart") for f in os.listdir(self.dir)), os.listdir(self.dir))
+        # a missing or foreign checkpoint is an input error naming the file
+        r = run([SHELLFRAC, deck, "--restart", deck], cwd=self.dir)
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("long.xml: cannot open the checkpoint", r.stderr)
+
+    def test_unstable_time_step_stops_with_a_message(self):
+        # Issue #6: a forced time step far above the stable one blows up; the run names the step, time and
+        # element, and exits with 3 instead of writing garbage.
+        deck = self.deck("unstable.xml", ('<Parameter name="End Time" type="double" value="8.8e-5"/>',
+                                          '<Parameter name="End Time" type="double" value="8.8e-5"/>'
+                                          '<Parameter name="Time Step" type="double" value="5e-6"/>'
+                                          '<Parameter name="Force Time Step" type="bool" value="true"/>'))
+        r = run([SHELLFRAC, deck], cwd=self.dir)
+        self.assertEqual(r.returncode, 3, r.stdout + r.stderr)
+        self.assertRegex(r.stderr, r"numerical blow-up at step [0-9]+, time [0-9.e+-]+: non-finite position or force "
+                                   r"in element [0-9]+")
 
 
 class MeshTool(unittest.TestCase):

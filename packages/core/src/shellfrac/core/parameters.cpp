@@ -219,6 +219,14 @@ void strip_validators(ParameterList& pl) {
   }
 }
 
+namespace {
+/// Text made safe for an XML comment: "--" is not allowed inside one.
+std::string comment_text(std::string s) {
+  for (std::size_t at; (at = s.find("--")) != std::string::npos;) s.replace(at, 2, "- -");
+  return s;
+}
+}  // namespace
+
 void write_documented_xml(std::ostream& os, const ParameterList& valid, int indent) {
   const std::string pad(indent, ' ');
   if (indent == 0) os << "<ParameterList name=\"" << valid.name() << "\">\n";
@@ -228,7 +236,7 @@ void write_documented_xml(std::ostream& os, const ParameterList& valid, int inde
     const std::string in = pad + "  ";
     if (e.isList()) {
       const auto& sub = valid.sublist(name);
-      if (!e.docString().empty()) os << in << "<!-- " << e.docString() << " -->\n";
+      if (!e.docString().empty()) os << in << "<!-- " << comment_text(e.docString()) << " -->\n";
       os << in << "<ParameterList name=\"" << name << "\">\n";
       write_documented_xml(os, sub, indent + 2);
       os << in << "</ParameterList>\n";
@@ -255,7 +263,7 @@ void write_documented_xml(std::ostream& os, const ParameterList& valid, int inde
       ds << std::setprecision(17) << Teuchos::getValue<double>(e);
       value = ds.str();
     }
-    os << in << "<!-- " << comment.str() << " -->\n";
+    os << in << "<!-- " << comment_text(comment.str()) << " -->\n";
     os << in << "<Parameter name=\"" << name << "\" type=\"" << type_name(e) << "\" value=\"" << value << "\"/>\n";
   }
   if (indent == 0) os << "</ParameterList>\n";

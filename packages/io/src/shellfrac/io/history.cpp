@@ -1,6 +1,9 @@
 #include "shellfrac/io/history.hpp"
 
+#include <cstdio>
+#include <fstream>
 #include <iomanip>
+#include <string>
 #include <limits>
 
 #include "shellfrac/core/error.hpp"
@@ -16,6 +19,38 @@ HistoryWriter::HistoryWriter(const std::string& path, const std::vector<std::str
         SHELLFRAC_REQUIRE(out_.good(), path << ": cannot create the history file");
         for (std::size_t i = 0; i < columns_.size(); ++i) out_ << (i ? "," : "") << columns_[i];
         out_ << '\n' << std::flush;
+        out_ << std::setprecision(std::numeric_limits<double>::max_digits10);
+      },
+      0, comm);
+}
+
+HistoryWriter::HistoryWriter(const std::string& path, const std::vector<std::string>& columns, double keep_through,
+                             MPI_Comm comm)
+    : columns_(columns), root_(parallel::rank(comm) == 0) {
+  parallel::on_root_then_agree(
+      [&] {
+        std::ifstream in(path);
+        SHELLFRAC_INPUT_REQUIRE(in.good(), path << ": cannot resume this history file (missing?)");
+        std::string header, line, kept;
+        std::getline(in, header);
+        std::string expected;
+        for (std::size_t i = 0; i < columns_.size(); ++i) expected += (i ? "," : "") + columns_[i];
+        SHELLFRAC_INPUT_REQUIRE(header == expected, path << ": cannot resume: its columns differ from this run's");
+        while (std::getline(in, line)) {
+          if (line.empty()) continue;
+          if (std::stod(line.substr(0, line.find(','))) > keep_through) break;
+          kept += line + '\n';
+        }
+        in.close();
+        const std::string tmp = path + ".tmp";
+        {
+          std::ofstream out(tmp, std::ios::trunc);
+          out << header << '\n' << kept;
+          SHELLFRAC_REQUIRE(out.good(), tmp << ": cannot write");
+        }
+        SHELLFRAC_REQUIRE(std::rename(tmp.c_str(), path.c_str()) == 0, path << ": cannot replace it by " << tmp);
+        out_.open(path, std::ios::app);
+        SHELLFRAC_REQUIRE(out_.good(), path << ": cannot append to the history file");
         out_ << std::setprecision(std::numeric_limits<double>::max_digits10);
       },
       0, comm);

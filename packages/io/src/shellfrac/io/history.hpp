@@ -17,6 +17,10 @@ class HistoryWriter {
   /// Creates (overwrites) `path` on rank 0 and writes the header. Throws Error naming the file on failure
   /// (on every rank). Collective.
   HistoryWriter(const std::string& path, const std::vector<std::string>& columns, MPI_Comm comm = MPI_COMM_WORLD);
+  /// Resumes an existing file (a restart): keeps its header (which must equal `columns`) and the rows whose first
+  /// value is <= keep_through, drops the others, and appends after them. InputError naming the file if it is
+  /// missing or has other columns. Collective.
+  HistoryWriter(const std::string& path, const std::vector<std::string>& columns, double keep_through, MPI_Comm comm);
   /// Appends a row; values.size() must equal the number of columns. Only rank 0's values are used.
   void write_row(const std::vector<double>& values);
   const std::vector<std::string>& columns() const { return columns_; }

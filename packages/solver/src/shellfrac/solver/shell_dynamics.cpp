@@ -1200,6 +1200,114 @@ void ShellDynamics::Impl::update_fragments() const {
 
 bool ShellDynamics::fracture() const { return impl_->fracture; }
 
+namespace {
+// Per-element state columns of a checkpoint, in order: x, v, a, f, fext, react (nx each), t, g (nt each),
+// Lambda (27), Tdot, Tddot (6 each), energy_e, work_ext, work_react, dissipated, plastic_work, act_e.
+constexpr int ckpt_element_width = 6 * nx + 2 * nt + 27 + 12 + 6;
+// Per-interface columns: state, delta_max (3), co-normal (9), U_coh, D_coh, act_i, penalty energy.
+constexpr int ckpt_interface_width = 17;
+constexpr int ckpt_plastic_width = nq * 7;
+}  // namespace
+
+io::CheckpointData ShellDynamics::checkpoint() const {
+  const Impl& s = *impl_;
+  io::CheckpointData d;
+  d.scalars["time"] = s.time, d.scalars["step"] = double(s.step), d.scalars["dt"] = s.dt;
+  d.scalars["num_elements"] = double(s.dm.num_global_elements());
+  auto& el = d.tables["elements"];
+  el.width = ckpt_element_width;
+  for (LocalId le = 0; le < s.no; ++le) {
+    el.ids.push_back(s.dm.element_gid(le));
+    for (const auto* a : {&s.x, &s.v, &s.a, &s.f, &s.fext, &s.react})
+      el.values.insert(el.values.end(), a->begin() + le * nx, a->begin() + (le + 1) * nx);
+    for (const auto* a : {&s.t, &s.g}) el.values.insert(el.values.end(), a->begin() + le * nt, a->begin() + (le + 1) * nt);
+    el.values.insert(el.values.end(), s.Lam.begin() + le * 27, s.Lam.begin() + (le + 1) * 27);
+    for (const auto* a : {&s.Tdot, &s.Tddot}) el.values.insert(el.values.end(), a->begin() + le * 6, a->begin() + (le + 1) * 6);
+    for (const auto* a : {&s.energy_e, &s.work_ext, &s.work_react, &s.dissipated, &s.plastic_work, &s.act_e})
+      el.values.push_back((*a)[le]);
+  }
+  if (s.any_plastic) {
+    auto& pl = d.tables["plastic"];
+    pl.width = ckpt_plastic_width;
+    for (LocalId le = 0; le < s.no; ++le) {
+      pl.ids.push_back(s.dm.element_gid(le));
+      for (int q = 0; q < nq; ++q) {
+        const auto& st = s.pstate[le * nq + q];
+        pl.values.insert(pl.values.end(), {st.eps_p[0], st.eps_p[1], st.eps_p[2], st.rho_p[0], st.rho_p[1], st.rho_p[2], st.alpha});
+      }
+    }
+  }
+  auto& it = d.tables["interfaces"];
+  it.width = ckpt_interface_width;
+  const auto& ifs = s.dm.interfaces();
+  for (std::size_t i = 0; i < ifs.size(); ++i) {
+    if (!ifs[i].owned) continue;
+    it.ids.push_back(ifs[i].gid);
+    it.values.push_back(double(s.istate[i]));
+    it.values.insert(it.values.end(), s.dmax.begin() + i * 3, s.dmax.begin() + i * 3 + 3);
+    it.values.insert(it.values.end(), s.conormal.begin() + i * 9, s.conormal.begin() + i * 9 + 9);
+    it.values.insert(it.values.end(), {s.ucoh[i], s.dcoh[i], s.act_i[i], s.energy_i[i]});
+  }
+  return d;
+}
+
+void ShellDynamics::restore(const io::CheckpointData& d) {
+  Impl& s = *impl_;
+  const auto& file = s.setup.deck_file;
+  const auto scalar = [&](const char* name) {
+    const auto it = d.scalars.find(name);
+    SHELLFRAC_INPUT_REQUIRE(it != d.scalars.end(), file << ": the checkpoint has no '" << name << "'");
+    return it->second;
+  };
+  const auto table = [&](const char* name, int width) -> const io::CheckpointTable& {
+    const auto it = d.tables.find(name);
+    SHELLFRAC_INPUT_REQUIRE(it != d.tables.end() && it->second.width == width,
+                            file << ": the checkpoint's table '" << name << "' is missing or has another width "
+                                 << "(written by another version or for another model?)");
+    return it->second;
+  };
+  SHELLFRAC_INPUT_REQUIRE(GlobalId(scalar("num_elements")) == s.dm.num_global_elements(),
+                          file << ": the checkpoint has " << GlobalId(scalar("num_elements")) << " elements, the mesh "
+                               << s.dm.num_global_elements());
+  s.time = scalar("time"), s.step = long(scalar("step")), s.dt = scalar("dt");
+  const auto& el = table("elements", ckpt_element_width);
+  const io::CheckpointTable* pl = s.any_plastic ? &table("plastic", ckpt_plastic_width) : nullptr;
+  for (LocalId le = 0; le < s.no; ++le) {
+    const GlobalId gid = s.dm.element_gid(le);
+    const double* r = el.row(gid);
+    SHELLFRAC_INPUT_REQUIRE(r, file << ": the checkpoint has no state for element " << gid + 1);
+    for (auto* a : {&s.x, &s.v, &s.a, &s.f, &s.fext, &s.react}) std::copy(r, r + nx, a->begin() + le * nx), r += nx;
+    for (auto* a : {&s.t, &s.g}) std::copy(r, r + nt, a->begin() + le * nt), r += nt;
+    std::copy(r, r + 27, s.Lam.begin() + le * 27), r += 27;
+    for (auto* a : {&s.Tdot, &s.Tddot}) std::copy(r, r + 6, a->begin() + le * 6), r += 6;
+    for (auto* a : {&s.energy_e, &s.work_ext, &s.work_react, &s.dissipated, &s.plastic_work, &s.act_e}) (*a)[le] = *r++;
+    if (pl) {
+      const double* p = pl->row(gid);
+      SHELLFRAC_INPUT_REQUIRE(p, file << ": the checkpoint has no plastic state for element " << gid + 1);
+      for (int q = 0; q < nq; ++q, p += 7) {
+        auto& st = s.pstate[le * nq + q];
+        std::copy(p, p + 3, st.eps_p), std::copy(p + 3, p + 6, st.rho_p), st.alpha = p[6];
+      }
+    }
+  }
+  const auto& it = table("interfaces", ckpt_interface_width);
+  const auto& ifs = s.dm.interfaces();
+  for (std::size_t i = 0; i < ifs.size(); ++i) {
+    const double* r = it.row(ifs[i].gid);
+    SHELLFRAC_INPUT_REQUIRE(r, file << ": the checkpoint has no state for interface " << ifs[i].gid + 1);
+    s.istate[i] = int(r[0]);
+    std::copy(r + 1, r + 4, s.dmax.begin() + i * 3);
+    std::copy(r + 4, r + 13, s.conormal.begin() + i * 9);
+    s.ucoh[i] = r[13], s.dcoh[i] = r[14], s.act_i[i] = r[15], s.energy_i[i] = r[16];
+    if (s.istate[i] != intact) {  // an activated edge is lifted by neither side
+      if (ifs[i].minus < s.no) s.lift[ifs[i].minus][ifs[i].minus_edge] = false;
+      if (ifs[i].plus < s.no) s.lift[ifs[i].plus][ifs[i].plus_edge] = false;
+    }
+  }
+  s.fragments_at = -1;
+  s.sync_state();
+}
+
 std::vector<std::vector<double>> ShellDynamics::fragment_table() const {
   const Impl& s = *impl_;
   if (s.fracture) s.update_fragments();

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "shellfrac/core/types.hpp"
+#include "shellfrac/io/checkpoint.hpp"
 #include "shellfrac/solver/dynamics_params.hpp"
 
 namespace shellfrac::mesh {
@@ -112,6 +113,14 @@ class ShellDynamics {
   /// and the fragment id (smallest element id + 1 of the element's fragment). fields[k][le] in
   /// element_field_names() order. Collective (fragments).
   void element_fields(std::vector<std::vector<double>>& fields) const;
+  /// The whole state needed to continue bitwise (positions, velocities, accelerations, directors, rotations,
+  /// director rates, forces, energies and work accounts, plastic state per area point, interface states),
+  /// as tables by element and interface global id. Each rank gives its owned rows. (Not collective.)
+  io::CheckpointData checkpoint() const;
+  /// Restores a checkpoint written by checkpoint() on any rank count: every owned element and local interface
+  /// looks up its row by global id; the ghosts' positions and directors are imported. InputError if the
+  /// checkpoint does not belong to this mesh. Collective.
+  void restore(const io::CheckpointData& data);
   /// Whether any edge of the mesh may break (Fracture; the same on every rank).
   bool fracture() const;
   /// One row per fragment, in increasing fragment id: {fragment id (smallest element id + 1), elements, mass,

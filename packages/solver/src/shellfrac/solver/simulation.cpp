@@ -11,15 +11,21 @@
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/dist/distributed_mesh.hpp"
 #include "shellfrac/dist/partitioner.hpp"
+#include "shellfrac/io/checkpoint.hpp"
 #include "shellfrac/io/exodus_results.hpp"
 #include "shellfrac/io/history.hpp"
 #include "shellfrac/mesh/vec3_ops.hpp"
 #include "shellfrac/solver/shell_dynamics.hpp"
 #include <chrono>
+#include <csignal>
 
 namespace shellfrac::solver {
 
 namespace {
+
+/// Signal number received (SIGTERM / SIGUSR1), polled once per step by every rank.
+volatile std::sig_atomic_t received_signal = 0;
+extern "C" void on_signal(int sig) { received_signal = sig; }
 
 std::string directory_of(const std::string& path) {
   const auto slash = path.find_last_of('/');
@@ -72,6 +78,18 @@ Teuchos::RCP<const Teuchos::ParameterList> OutputParams::valid_parameters() {
   return pl;
 }
 
+Teuchos::RCP<const Teuchos::ParameterList> CheckpointParams::valid_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Checkpoint"));
+  pl->set("Step Interval", 0, "Write a checkpoint every N steps (0 = not by step count)", params::int_range(0, 1 << 30));
+  pl->set("Wall Interval", 0.0, "Write a checkpoint every M minutes of wall time (0 = not by time)",
+          params::non_negative_double());
+  pl->set("File", "", "Checkpoint file (HDF5); empty = <Output Directory>/<Base Name>_checkpoint.h5. It is replaced "
+                      "atomically; SIGUSR1 writes one, SIGTERM writes one and stops the run (exit code 4)");
+  pl->set("Restart From", "", "Continue from this checkpoint (relative paths: to the deck's directory); empty = "
+                              "start at t = 0. The command-line option restart (shellfrac --restart FILE DECK) overrides it");
+  return pl;
+}
+
 Teuchos::RCP<const Teuchos::ParameterList> Deck::valid_parameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("shellfrac"));
   pl->set("Mesh", *MeshParams::valid_parameters(), "The mesh: a file or a built-in generator");
@@ -81,6 +99,7 @@ Teuchos::RCP<const Teuchos::ParameterList> Deck::valid_parameters() {
   mats.set("steel", *materials::MaterialParams::valid_parameters());
   pl->set("Partitioning", *dist::PartitionParams::valid_parameters(), "Domain decomposition of the elements");
   pl->set("Output", *OutputParams::valid_parameters(), "Results files");
+  pl->set("Checkpoint", *CheckpointParams::valid_parameters(), "Checkpoint files and restart");
   pl->set("Discretization", *DiscretizationParams::valid_parameters(), "DG stabilization constants");
   pl->set("Time Integration", *TimeParams::valid_parameters(), "Explicit central differences");
   pl->set("Fracture", *FractureParams::valid_parameters(), "Extrinsic cohesive fracture on element edges");
@@ -101,7 +120,7 @@ Deck Deck::read(const std::string& file, MPI_Comm comm) {
   const params::Context ctx{file, "shellfrac"};
   // Top level: only the known sublists; user-named children of Blocks/Materials are validated one by one.
   Teuchos::ParameterList top("shellfrac");
-  for (const char* name : {"Mesh", "Blocks", "Materials", "Partitioning", "Output", "Discretization",
+  for (const char* name : {"Mesh", "Blocks", "Materials", "Partitioning", "Output", "Checkpoint", "Discretization",
                            "Time Integration", "Fracture", "Boundary Conditions", "Initial Conditions", "Loads"})
     top.sublist(name);
   params::validate(pl, top, ctx);
@@ -161,6 +180,18 @@ Deck Deck::read(const std::string& file, MPI_Comm comm) {
   if (d.output.base_name.empty()) d.output.base_name = stem_of(file);
   d.output.directory = out.get<std::string>("Directory");
   for (const auto& p : out.get<Teuchos::Array<std::string>>("Probes")) d.output.probes.push_back(p);
+  auto& ck = pl.sublist("Checkpoint");
+  params::validate(ck, *CheckpointParams::valid_parameters(), ctx / "Checkpoint");
+  d.checkpoint.step_interval = ck.get<int>("Step Interval");
+  d.checkpoint.wall_minutes = ck.get<double>("Wall Interval");
+  d.checkpoint.file = ck.get<std::string>("File");
+  if (d.checkpoint.file.empty())
+    d.checkpoint.file = (d.output.directory.empty() ? std::string() : d.output.directory + "/") + d.output.base_name +
+                        "_checkpoint.h5";
+  d.checkpoint.restart_from = ck.get<std::string>("Restart From");
+  if (!d.checkpoint.restart_from.empty() && d.checkpoint.restart_from.front() != '/')
+    d.checkpoint.restart_from =
+        (directory_of(file).empty() ? std::string() : directory_of(file) + "/") + d.checkpoint.restart_from;
   if (!d.output.directory.empty()) {
     struct stat st {};
     SHELLFRAC_INPUT_REQUIRE(stat(d.output.directory.c_str(), &st) == 0 && S_ISDIR(st.st_mode),
@@ -188,7 +219,9 @@ DynamicsSetup make_dynamics_setup(const Deck& deck, const mesh::SerialMesh& mesh
   return setup;
 }
 
-Simulation::Simulation(const std::string& deck_file, MPI_Comm comm) : comm_(comm), deck_(Deck::read(deck_file, comm)) {
+Simulation::Simulation(const std::string& deck_file, MPI_Comm comm, const std::string& restart_file)
+    : comm_(comm), deck_(Deck::read(deck_file, comm)) {
+  if (!restart_file.empty()) deck_.checkpoint.restart_from = restart_file;
   mesh_ = std::make_unique<mesh::SerialMesh>(build_mesh(deck_.mesh, comm));
   const auto& m = *mesh_;
   // Every mesh block needs a section; every section must name a mesh block.
@@ -218,6 +251,16 @@ Simulation::Simulation(const std::string& deck_file, MPI_Comm comm) : comm_(comm
   dmesh_ = std::make_unique<dist::DistributedMesh>(m, topo, part, comm);
 
   dynamics_ = std::make_unique<ShellDynamics>(m, *dmesh_, make_dynamics_setup(deck_, m));
+  // Restart: the checkpoint is read and checked against this model before any output is written.
+  if (!deck_.checkpoint.restart_from.empty()) {
+    const auto data = io::read_checkpoint(deck_.checkpoint.restart_from, comm_);
+    const auto e0 = data.scalars.find("e0");
+    SHELLFRAC_INPUT_REQUIRE(e0 != data.scalars.end(),
+                            deck_.checkpoint.restart_from << ": not a checkpoint of a shellfrac run (no 'e0')");
+    dynamics_->restore(data);
+    restart_e0_ = e0->second;
+    summary_.restart_step = dynamics_->step_count();
+  }
   summary_.stable_dt = dynamics_->stable_time_step();
   for (const auto& name : deck_.output.probes) {
     const auto it = std::find_if(m.node_sets.begin(), m.node_sets.end(), [&](const auto& ns) { return ns.name == name; });
@@ -252,6 +295,8 @@ std::string Simulation::exodus_path() const {
   return (o.directory.empty() ? std::string() : o.directory + "/") + o.base_name + ".exo";
 }
 
+std::string Simulation::checkpoint_path() const { return deck_.checkpoint.file; }
+
 std::string Simulation::fragments_path() const {
   const auto& o = deck_.output;
   return (o.directory.empty() ? std::string() : o.directory + "/") + o.base_name + "_fragments.csv";
@@ -281,15 +326,21 @@ RunSummary Simulation::run() {
     element[1].push_back(dm.rank());
     for (int a = 0; a < npe; ++a) layout.node_coords.push_back(dm.node_coords(le, a));
   }
+  // A restarted run writes its Exodus results to a new file set <base>.restart<step>.exo with continuous time,
+  // and resumes the history and fragment tables after the restart point.
+  const bool restarted = summary_.restart_step >= 0;
+  const std::string exo_path =
+      restarted ? exodus_path().substr(0, exodus_path().size() - 4) + ".restart" + std::to_string(summary_.restart_step) + ".exo"
+                : exodus_path();
   // Results of an earlier run with another rank count would sit beside ours and confuse ParaView (which
   // opens a per-rank set from any of its files): remove <base>.exo and every <base>.exo.<n>.<r> first.
   parallel::on_root_then_agree(
       [&] {
-        remove_stale_results(exodus_path());
-        std::filesystem::remove(fragments_path());  // a fragment table of an earlier run would be misleading
+        remove_stale_results(exo_path);
+        if (!restarted) std::filesystem::remove(fragments_path());  // a fragment table of an earlier run would mislead
       },
       0, comm_);
-  io::ExodusResultsWriter exo(exodus_path(), layout, comm_);
+  io::ExodusResultsWriter exo(exo_path, layout, comm_);
   std::vector<std::string> columns = {"step",          "time",          "dt",
                                       "kinetic_energy", "strain_energy", "penalty_energy",
                                       "external_work",  "energy_balance_error"};
@@ -305,19 +356,20 @@ RunSummary Simulation::run() {
     for (const char* q : {"_reaction_x", "_reaction_y", "_reaction_z", "_moment_x", "_moment_y", "_moment_z"})
       columns.push_back(bc.name + q);
   for (const char* q : {"angular_momentum_x", "angular_momentum_y", "angular_momentum_z"}) columns.push_back(q);
-  io::HistoryWriter history(history_path(), columns, comm_);
   auto& dyn = *dynamics_;
+  auto history = restarted ? io::HistoryWriter(history_path(), columns, double(summary_.restart_step), comm_)
+                           : io::HistoryWriter(history_path(), columns, comm_);
   std::vector<std::vector<Vec3>> nodal(3);
   std::vector<std::vector<double>> fields;
   // Fracture runs: a row per fragment at every output time.
   std::unique_ptr<io::HistoryWriter> fragment_csv;
+  const std::vector<std::string> fragment_columns = {"time",  "fragment_id", "elements",   "mass",       "com_x",
+                                                     "com_y", "com_z",       "momentum_x", "momentum_y", "momentum_z"};
   if (dyn.fracture())
-    fragment_csv = std::make_unique<io::HistoryWriter>(
-        fragments_path(), std::vector<std::string>{"time", "fragment_id", "elements", "mass", "com_x", "com_y", "com_z",
-                                                   "momentum_x", "momentum_y", "momentum_z"},
-        comm_);
-  auto write_output = [&] {
-    if (fragment_csv)
+    fragment_csv = restarted ? std::make_unique<io::HistoryWriter>(fragments_path(), fragment_columns, dyn.time(), comm_)
+                             : std::make_unique<io::HistoryWriter>(fragments_path(), fragment_columns, comm_);
+  auto write_output = [&](bool fragment_rows = true) {
+    if (fragment_csv && fragment_rows)
       for (auto row : dyn.fragment_table()) {
         row.insert(row.begin(), dyn.time());
         fragment_csv->write_row(row);
@@ -329,7 +381,15 @@ RunSummary Simulation::run() {
     exo.write_step(dyn.time(), nodal, element);
   };
   const StepRecord r0 = dyn.record();
-  const double e0 = r0.kinetic + r0.strain + r0.penalty;
+  const double e0 = restarted ? restart_e0_ : r0.kinetic + r0.strain + r0.penalty;
+  const auto& ck = deck_.checkpoint;
+  const bool checkpointing = ck.step_interval > 0 || ck.wall_minutes > 0;
+  auto write_checkpoint = [&] {
+    auto data = dyn.checkpoint();
+    data.scalars["e0"] = e0;
+    data.strings["deck"] = deck_.file;
+    io::write_checkpoint(checkpoint_path(), data, comm_);
+  };
   auto write_history = [&] {
     const StepRecord r = dyn.record();
     // Energy balance (math.md §9.7, Check 2): K + U_el + U_stab + D_damp + W_p + U_coh + D_coh + D_act
@@ -348,12 +408,21 @@ RunSummary Simulation::run() {
     for (double l : r.angular_momentum) row.push_back(l);
     history.write_row(row);
   };
-  write_output();
-  write_history();
   const auto& tp = deck_.time;
+  const double output_step = tp.output_interval > 0 ? tp.output_interval : tp.end_time;
+  double next_output = output_step;
+  if (restarted) {
+    write_output(false);  // the restart state opens the new Exodus set; history and fragments already have it
+    while (next_output <= dyn.time() + 0.5 * dyn.time_step()) next_output += output_step;  // the same sums as a run from 0
+  } else {
+    write_output();
+    write_history();
+  }
   const auto start = std::chrono::steady_clock::now();
-  double next_output = tp.output_interval > 0 ? tp.output_interval : tp.end_time;
+  auto last_checkpoint = start;
   bool last_written = true, last_recorded = true;
+  received_signal = 0;
+  const auto old_term = std::signal(SIGTERM, on_signal), old_usr1 = std::signal(SIGUSR1, on_signal);
   // Stop when the next step would overshoot the end time by more than half a step.
   while (dyn.time() + 0.5 * dyn.time_step() < tp.end_time) {
     dyn.step();
@@ -362,16 +431,36 @@ RunSummary Simulation::run() {
     if (dyn.time() >= next_output - 0.5 * dyn.time_step()) {
       write_output();
       last_written = true;
-      while (next_output <= dyn.time() + 0.5 * dyn.time_step()) next_output += tp.output_interval > 0 ? tp.output_interval : tp.end_time;
+      while (next_output <= dyn.time() + 0.5 * dyn.time_step()) next_output += output_step;
+    }
+    // Checkpoints: every Step Interval steps, every Wall Interval minutes (rank 0's clock decides), at SIGUSR1;
+    // SIGTERM writes one, closes the outputs and stops. A signal seen by any rank counts for all.
+    const auto now = std::chrono::steady_clock::now();
+    const bool wall_due = ck.wall_minutes > 0 &&
+                          std::chrono::duration<double>(now - last_checkpoint).count() >= 60 * ck.wall_minutes;
+    // One reduction: 2 x signal + wall flag (a signal on any rank, or any rank's clock, decides for all).
+    const int code = static_cast<int>(parallel::max(double(2 * received_signal + (wall_due ? 1 : 0)), comm_));
+    const int sig = code / 2;
+    if ((ck.step_interval > 0 && dyn.step_count() % ck.step_interval == 0) || code != 0) {
+      write_checkpoint();
+      last_checkpoint = now;
+      if (sig == SIGUSR1) received_signal = 0;
+      if (sig == SIGTERM) {
+        summary_.stopped_by_signal = true;
+        break;
+      }
     }
   }
+  std::signal(SIGTERM, old_term), std::signal(SIGUSR1, old_usr1);
   if (!last_recorded) write_history();
   if (!last_written) write_output();
-  summary_.steps = dyn.step_count();
+  if (checkpointing && !summary_.stopped_by_signal) write_checkpoint();  // the end state, to continue the run later
+  summary_.steps = dyn.step_count() - std::max(summary_.restart_step, 0L);
   summary_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const int np = parallel::size(comm_);
-  summary_.files = {np == 1 ? exodus_path() : io::rank_file_name(exodus_path(), np, 0) + " ... (" + std::to_string(np) + " files)",
+  summary_.files = {np == 1 ? exo_path : io::rank_file_name(exo_path, np, 0) + " ... (" + std::to_string(np) + " files)",
                     history_path()};
+  if (checkpointing || summary_.stopped_by_signal) summary_.files.push_back(checkpoint_path());
   if (dynamics_->fracture()) summary_.files.push_back(fragments_path());
   return summary_;
 }

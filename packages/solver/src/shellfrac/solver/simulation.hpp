@@ -31,6 +31,15 @@ struct OutputParams {
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
 };
 
+/// Validated "Checkpoint" sublist (HDF5 checkpoints and restart; io/checkpoint.hpp).
+struct CheckpointParams {
+  int step_interval = 0;      ///< write every N steps (0 = never by count)
+  double wall_minutes = 0;    ///< write every M minutes of wall time (0 = never by time)
+  std::string file;           ///< path; default <Output Directory>/<Base Name>_checkpoint.h5
+  std::string restart_from;   ///< restart from this checkpoint ("" = start at t = 0)
+  static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
+};
+
 /// The whole validated deck, as plain structs.
 struct Deck {
   std::string file;  ///< the deck's path
@@ -39,6 +48,7 @@ struct Deck {
   std::map<std::string, materials::MaterialParams> materials;
   std::shared_ptr<dist::PartitionParams> partition;
   OutputParams output;
+  CheckpointParams checkpoint;
   DiscretizationParams discretization;
   TimeParams time;
   FractureParams fracture;
@@ -62,6 +72,8 @@ struct RunSummary {
   long steps = 0;                ///< time steps taken
   double wall_seconds = 0;       ///< wall time of the time loop
   std::vector<std::string> files;  ///< output files written (rank 0's view: base names)
+  long restart_step = -1;          ///< the step the run restarted from (-1: started at t = 0)
+  bool stopped_by_signal = false;  ///< SIGTERM: a checkpoint was written and the run stopped early
 };
 
 /// A run. Construction does all the input work (collective); run() writes the outputs.
@@ -75,7 +87,8 @@ DynamicsSetup make_dynamics_setup(const Deck& deck, const mesh::SerialMesh& mesh
 
 class Simulation {
  public:
-  Simulation(const std::string& deck_file, MPI_Comm comm = MPI_COMM_WORLD);
+  /// `restart_file` (if not empty) overrides the deck's Checkpoint->Restart From.
+  Simulation(const std::string& deck_file, MPI_Comm comm = MPI_COMM_WORLD, const std::string& restart_file = "");
   ~Simulation();
   /// Writes step 0, then (End Time > 0) integrates in time, writing Exodus at the output interval and the
   /// history every History Interval steps. Returns the summary. Collective.
@@ -87,6 +100,8 @@ class Simulation {
   std::string history_path() const;
   /// <dir>/<base>_fragments.csv: one row per fragment at each output time (fracture runs only).
   std::string fragments_path() const;
+  /// Path of the checkpoint file this run writes.
+  std::string checkpoint_path() const;
 
  private:
   MPI_Comm comm_;
@@ -97,6 +112,7 @@ class Simulation {
   std::vector<std::string> probe_names_;
   std::vector<std::vector<char>> probe_members_;
   RunSummary summary_;
+  double restart_e0_ = 0;  ///< initial energy of the restarted run (for the balance error)
 };
 
 }  // namespace shellfrac::solver

@@ -1,0 +1,160 @@
+// Checkpoint/restart (issue #6), each check with its reference:
+//  * ContinuesBitwiseThroughCrackActivation: a strip with one cohesive edge (the §5.2 problem of
+//    test_fracture) is run to 14 us continuously, and to 10.5 us (after the edge activated at ~9.99 us, before
+//    it separates at ~11.0 us) with a checkpoint, then restarted to 14 us: the resumed history file and the
+//    final nodal and element fields must equal the continuous run's bitwise.
+//  * On 3 ranks also across rank counts: written on 3 ranks and restarted on 2, written on 1 and restarted on 3.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <filesystem>
+#include <string>
+
+#include "deck_test_util.hpp"
+#include "shellfrac/io/exodus_results.hpp"
+#include "shellfrac/mesh/generators.hpp"
+#include "shellfrac/meshio/exodus_mesh_io.hpp"
+#include "shellfrac/solver/simulation.hpp"
+
+using namespace shellfrac;
+using namespace shellfrac::test;
+
+namespace {
+
+constexpr double L = 0.05, b = 0.001, h = 0.001;
+
+std::string strip_deck(const std::string& dir, const std::string& end_time) {
+  const std::string body =
+      "<ParameterList name=\"Time Integration\"><Parameter name=\"End Time\" type=\"double\" value=\"" + end_time +
+      "\"/><Parameter name=\"History Interval\" type=\"int\" value=\"5\"/>"
+      "<Parameter name=\"Output Interval\" type=\"double\" value=\"3.5e-6\"/></ParameterList>\n"
+      "<ParameterList name=\"Checkpoint\"><Parameter name=\"Step Interval\" type=\"int\" value=\"100000\"/></ParameterList>\n"
+      "<ParameterList name=\"Fracture\"><Parameter name=\"Edges\" type=\"string\" value=\"crack\"/></ParameterList>\n"
+      "<ParameterList name=\"Boundary Conditions\">"
+      "<ParameterList name=\"left\"><Parameter name=\"Type\" type=\"string\" value=\"Prescribed Velocity\"/>"
+      "<Parameter name=\"Node Set\" type=\"string\" value=\"x_min\"/>"
+      "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{-20.0, 0.0, 0.0}\"/></ParameterList>"
+      "<ParameterList name=\"right\"><Parameter name=\"Type\" type=\"string\" value=\"Prescribed Velocity\"/>"
+      "<Parameter name=\"Node Set\" type=\"string\" value=\"x_max\"/>"
+      "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{20.0, 0.0, 0.0}\"/></ParameterList>"
+      "</ParameterList>\n";
+  const std::string mesh_xml =
+      "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"File\"/>"
+      "<Parameter name=\"File\" type=\"string\" value=\"../strip_mesh.exo\"/></ParameterList>\n";
+  std::string text = deck(mesh_xml, body, dir, "{x_max}", {h, 2693, 68.9e9, 0.0});
+  text.replace(text.find("<Parameter name=\"Density\""), 0,
+               "<Parameter name=\"Model\" type=\"string\" value=\"Resultant Plasticity\"/>"
+               "<Parameter name=\"Yield Stress\" type=\"double\" value=\"280e6\"/>"
+               "<Parameter name=\"Hardening Modulus\" type=\"double\" value=\"20e9\"/>"
+               "<Parameter name=\"Cohesive Strength\" type=\"double\" value=\"375e6\"/>"
+               "<Parameter name=\"Fracture Energy\" type=\"double\" value=\"10e3\"/>");
+  return text;
+}
+
+void write_strip(const std::string& path) {
+  auto m = mesh::make_rectangle(2 * L, b, 100, 1, mesh::DiagonalPattern::Right);
+  mesh::SideSet edges{"crack", 10, {}, {}};
+  for (GlobalId e = 0; e < m.num_elements(); ++e)
+    for (int k = 0; k < 3; ++k) {
+      const auto& p = m.coords[m.node(e, k)];
+      const auto& q = m.coords[m.node(e, (k + 1) % 3)];
+      const auto& o = m.coords[m.node(e, (k + 2) % 3)];
+      if (std::abs(p[0] - L) < 1e-9 && std::abs(q[0] - L) < 1e-9 && o[0] < L)
+        edges.elements.push_back(e), edges.local_edges.push_back(k);
+    }
+  m.side_sets.push_back(edges);
+  mesh::promote_to_p2(m);
+  meshio::write_exodus_mesh(m, path);
+}
+
+/// Runs the strip to 14 us in `dir` on `comm` without a break (the reference).
+void continuous(const std::string& dir, MPI_Comm comm) {
+  if (parallel::rank(comm) == 0) std::ofstream(dir + "/run.xml") << strip_deck(dir, "14e-6");
+  MPI_Barrier(comm);
+  solver::Simulation(dir + "/run.xml", comm).run();
+}
+
+/// Runs to 10.5 us on `first`, then restarts the same deck to 14 us on `second` (either may be MPI_COMM_NULL on
+/// ranks outside it). Collective over MPI_COMM_WORLD.
+void broken_run(const std::string& dir, MPI_Comm first, MPI_Comm second) {
+  if (parallel::rank() == 0) std::ofstream(dir + "/run.xml") << strip_deck(dir, "10.5e-6");
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (first != MPI_COMM_NULL) {
+    const auto s = solver::Simulation(dir + "/run.xml", first).run();
+    EXPECT_EQ(s.restart_step, -1);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (parallel::rank() == 0) std::ofstream(dir + "/run.xml") << strip_deck(dir, "14e-6");
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (second != MPI_COMM_NULL) {
+    solver::Simulation sim(dir + "/run.xml", second, dir + "/run_checkpoint.h5");
+    EXPECT_GT(sim.summary().restart_step, 0);
+    sim.run();
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+}
+
+/// The broken run's history equals the continuous one's, and its last Exodus frame equals the continuous
+/// run's last frame (nodal values, and element values except `rank`), bitwise.
+void expect_same(const std::string& reference, const std::string& broken, const std::string& what) {
+  if (parallel::rank() != 0) return;
+  EXPECT_EQ(slurp(reference + "/run_history.csv"), slurp(broken + "/run_history.csv")) << what;
+  const auto find_results = [](const std::string& dir, const std::string& stem) {
+    for (const auto& e : std::filesystem::directory_iterator(dir)) {
+      const std::string f = e.path().filename();
+      if (f.rfind(stem, 0) == 0 && f.find(".exo") != std::string::npos)
+        return dir + "/" + f.substr(0, f.find(".exo") + 4);
+    }
+    return std::string();
+  };
+  const auto rc = io::read_results(find_results(reference, "run.exo"));
+  const auto rb = io::read_results(find_results(broken, "run.restart"));
+  ASSERT_FALSE(rc.times.empty());
+  ASSERT_FALSE(rb.times.empty());
+  EXPECT_EQ(rc.times.back(), rb.times.back()) << what;
+  EXPECT_EQ(rc.nodal.back(), rb.nodal.back()) << what;
+  ASSERT_EQ(rc.element_names, rb.element_names);
+  for (std::size_t k = 0; k < rc.element_names.size(); ++k)
+    if (rc.element_names[k] != "rank") {
+      EXPECT_EQ(rc.element.back()[k], rb.element.back()[k]) << rc.element_names[k] << ", " << what;
+    }
+}
+
+std::string fresh(const std::string& dir) {
+  if (parallel::rank() == 0) std::filesystem::create_directories(dir);
+  MPI_Barrier(MPI_COMM_WORLD);
+  return dir;
+}
+
+}  // namespace
+
+TEST(Restart, ContinuesBitwiseThroughCrackActivation) {
+  const auto root = work_dir("restart");
+  if (parallel::rank() == 0) write_strip(root + "/strip_mesh.exo");
+  const auto ref = fresh(root + "/continuous"), same = fresh(root + "/same_ranks");
+  continuous(ref, MPI_COMM_WORLD);
+  broken_run(same, MPI_COMM_WORLD, MPI_COMM_WORLD);
+  expect_same(ref, same, "restart on the same rank count");
+  std::vector<std::string> hd;
+  const auto rows = read_history(same + "/run_history.csv", hd);
+  if (parallel::rank() == 0) {  // the restart point lies between activation and separation
+    double t_act = 0;
+    for (const auto& r : rows)
+      if (t_act == 0 && r[column(hd, "num_cohesive_edges")] > 0) t_act = r[column(hd, "time")];
+    EXPECT_GT(t_act, 0.0);
+    EXPECT_LT(t_act, 10.5e-6);
+    EXPECT_EQ(rows.back()[column(hd, "num_separated_edges")], 1.0);
+  }
+  if (parallel::size() == 3) {
+    MPI_Comm two, self;
+    MPI_Comm_split(MPI_COMM_WORLD, parallel::rank() < 2 ? 0 : MPI_UNDEFINED, parallel::rank(), &two);
+    MPI_Comm_split(MPI_COMM_WORLD, parallel::rank() == 0 ? 0 : MPI_UNDEFINED, 0, &self);
+    const auto a = fresh(root + "/three_to_two"), c = fresh(root + "/one_to_three");
+    broken_run(a, MPI_COMM_WORLD, two);
+    expect_same(ref, a, "written on 3 ranks, restarted on 2");
+    broken_run(c, self, MPI_COMM_WORLD);
+    expect_same(ref, c, "written on 1 rank, restarted on 3");
+    if (two != MPI_COMM_NULL) MPI_Comm_free(&two);
+    if (self != MPI_COMM_NULL) MPI_Comm_free(&self);
+  }
+}
