@@ -151,7 +151,7 @@ class Shellfrac(unittest.TestCase):
 
     def test_unstable_time_step_stops_with_a_message(self):
         # Issue #6: a forced time step far above the stable one blows up; the run names the step, time and
-        # element, and exits with 3 instead of writing garbage.
+        # element, writes its last good state (a copy kept every 50 steps) and exits with 3.
         deck = self.deck("unstable.xml", ('<Parameter name="End Time" type="double" value="8.8e-5"/>',
                                           '<Parameter name="End Time" type="double" value="8.8e-5"/>'
                                           '<Parameter name="Time Step" type="double" value="5e-6"/>'
@@ -160,6 +160,9 @@ class Shellfrac(unittest.TestCase):
         self.assertEqual(r.returncode, 3, r.stdout + r.stderr)
         self.assertRegex(r.stderr, r"numerical blow-up at step [0-9]+, time [0-9.e+-]+: non-finite position or force "
                                    r"in element [0-9]+")
+        # ... and writes the last good state as a checkpoint, from which a run can restart
+        self.assertIn("The last good state (step", r.stderr)
+        self.assertTrue(os.path.exists(os.path.join(self.dir, "unstable_checkpoint.h5")))
 
 
 class MeshTool(unittest.TestCase):

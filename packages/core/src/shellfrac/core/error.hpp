@@ -17,6 +17,13 @@ class Error : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A numerical failure of a run (non-finite state: an unstable time step or input). Thrown on every rank at
+/// once, so that the run can write its last good state before stopping.
+class NumericalError : public Error {
+ public:
+  using Error::Error;
+};
+
 /// A problem with the user's input: deck, mesh file, parameter value.
 class InputError : public std::runtime_error {
  public:

@@ -778,9 +778,12 @@ void ShellDynamics::Impl::check_finite() const {
         break;
       }
   const double worst = parallel::max(bad >= 0 ? double(bad) : -1.0, dm.comm());
-  SHELLFRAC_REQUIRE(worst < 0, "numerical blow-up at step " << step << ", time " << time << ": non-finite position or "
-                                   << "force in element " << GlobalId(worst) + 1
-                                   << " (time step too large or unstable input?)");
+  if (worst >= 0) {
+    std::ostringstream os;
+    os << "numerical blow-up at step " << step << ", time " << time << ": non-finite position or force in element "
+       << GlobalId(worst) + 1 << " (time step too large or unstable input?)";
+    throw NumericalError(os.str());  // on every rank (the reduction above)
+  }
 }
 
 // Accepts the plastic state computed by the last element kernel as the state at the new time and adds its
@@ -1269,7 +1272,9 @@ void ShellDynamics::restore(const io::CheckpointData& d) {
   SHELLFRAC_INPUT_REQUIRE(GlobalId(scalar("num_elements")) == s.dm.num_global_elements(),
                           file << ": the checkpoint has " << GlobalId(scalar("num_elements")) << " elements, the mesh "
                                << s.dm.num_global_elements());
-  s.time = scalar("time"), s.step = long(scalar("step")), s.dt = scalar("dt");
+  // The time step is the deck's (the same deck gives the same step, hence a bitwise continuation; a deck with a
+  // smaller Time Step or Safety Factor continues a blown-up run from its last good state).
+  s.time = scalar("time"), s.step = long(scalar("step"));
   const auto& el = table("elements", ckpt_element_width);
   const io::CheckpointTable* pl = s.any_plastic ? &table("plastic", ckpt_plastic_width) : nullptr;
   for (LocalId le = 0; le < s.no; ++le) {

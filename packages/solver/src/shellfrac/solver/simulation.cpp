@@ -86,7 +86,7 @@ Teuchos::RCP<const Teuchos::ParameterList> CheckpointParams::valid_parameters() 
   pl->set("File", "", "Checkpoint file (HDF5); empty = <Output Directory>/<Base Name>_checkpoint.h5. It is replaced "
                       "atomically; SIGUSR1 writes one, SIGTERM writes one and stops the run (exit code 4)");
   pl->set("Restart From", "", "Continue from this checkpoint (relative paths: to the deck's directory); empty = "
-                              "start at t = 0. The command-line option restart (shellfrac --restart FILE DECK) overrides it");
+                              "start at t = 0; the time step is the deck's. The command-line option restart (shellfrac --restart FILE DECK) overrides it");
   return pl;
 }
 
@@ -423,9 +423,23 @@ RunSummary Simulation::run() {
   bool last_written = true, last_recorded = true;
   received_signal = 0;
   const auto old_term = std::signal(SIGTERM, on_signal), old_usr1 = std::signal(SIGUSR1, on_signal);
+  // The last good state: a copy of the state every 50 steps, written as the checkpoint if the run blows up.
+  io::CheckpointData last_good = dyn.checkpoint();
   // Stop when the next step would overshoot the end time by more than half a step.
   while (dyn.time() + 0.5 * dyn.time_step() < tp.end_time) {
-    dyn.step();
+    try {
+      dyn.step();
+    } catch (const NumericalError& e) {
+      last_good.scalars["e0"] = e0;
+      last_good.strings["deck"] = deck_.file;
+      io::write_checkpoint(checkpoint_path(), last_good, comm_);
+      std::ostringstream os;
+      os << e.what() << ". The last good state (step " << long(last_good.scalars["step"]) << ", time "
+         << last_good.scalars["time"] << ") is in " << checkpoint_path()
+         << "; restart from it (--restart) with a smaller Time Step or Safety Factor";
+      throw NumericalError(os.str());
+    }
+    if (dyn.step_count() % 50 == 0) last_good = dyn.checkpoint();
     last_written = last_recorded = false;
     if (dyn.step_count() % tp.history_interval == 0) write_history(), last_recorded = true;
     if (dyn.time() >= next_output - 0.5 * dyn.time_step()) {
