@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parameters.hpp"
@@ -109,6 +111,65 @@ TEST(Parameters, MissingAndMalformedDecks) {
     FAIL();
   } catch (const InputError& e) {
     expect_contains(e.what(), "malformed_deck.xml: not a valid Teuchos XML parameter list");
+  }
+}
+
+// Hostile input (docs/hostile_input.md): Teuchos keeps whatever prefix of a number it can read, silently:
+// "0.01mm" was 0.01, "zero point three" was 0, an int "10.7" was 10, "99999999999999" was 276447231 and
+// "{0, x, 1}" was {0, 0, 1}. read_deck now refuses every numeric value that is not a whole number of its type.
+TEST(Parameters, NumbersMustBeWholeNumbersOfTheirType) {
+  struct Case {
+    std::string type, value, message;
+  };
+  const std::vector<Case> cases = {
+      {"double", "0.01mm", "parameter 'x->a' (type double): the value '0.01mm' is not a number"},
+      {"double", "zero point three", "the value 'zero point three' is not a number"},
+      {"double", "0x10", "the value '0x10' is not a number"},
+      {"double", "1e400", "the value '1e400' is not a number"},
+      {"int", "10.7", "(type int): the value '10.7' is not an integer in [-2147483648, 2147483647]"},
+      {"int", "99999999999999", "the value '99999999999999' is not an integer"},
+      {"Array(double)", "{0.0, x, 1.0}", "(type Array(double)): the element 'x' of '{0.0, x, 1.0}' is not a number"},
+      {"Array(int)", "{1, 2.5}", "the element '2.5' of '{1, 2.5}' is not an integer"},
+  };
+  for (const auto& c : cases) {
+    {
+      std::ofstream("numbers_deck.xml") << "<ParameterList name=\"x\"><Parameter name=\"a\" type=\"" << c.type
+                                        << "\" value=\"" << c.value << "\"/></ParameterList>\n";
+    }
+    try {
+      params::read_deck("numbers_deck.xml");
+      ADD_FAILURE() << c.type << " '" << c.value << "' was accepted";
+    } catch (const InputError& e) {
+      expect_contains(e.what(), "numbers_deck.xml: ");
+      expect_contains(e.what(), c.message);
+    }
+  }
+  // Whole numbers, with blanks, signs, exponents, nan / inf (the range validators reject those) still pass.
+  {
+    std::ofstream("numbers_ok_deck.xml")
+        << "<ParameterList name=\"x\"><Parameter name=\"a\" type=\"double\" value=\" -2.5e-3 \"/>"
+           "<Parameter name=\"b\" type=\"int\" value=\"+7\"/><Parameter name=\"c\" type=\"double\" value=\"nan\"/>"
+           "<Parameter name=\"d\" type=\"Array(double)\" value=\"{1, 2.0, -3e2}\"/>"
+           "<Parameter name=\"e\" type=\"Array(double)\" value=\"{}\"/>"
+           "<ParameterList name=\"s\"><Parameter name=\"f\" type=\"int\" value=\"-2147483648\"/></ParameterList>"
+           "</ParameterList>\n";
+  }
+  const auto deck = params::read_deck("numbers_ok_deck.xml");
+  EXPECT_EQ(deck->get<double>("a"), -2.5e-3);
+  EXPECT_EQ(deck->get<int>("b"), 7);
+  EXPECT_EQ(deck->sublist("s").get<int>("f"), -2147483648LL);
+}
+
+TEST(Parameters, TeuchosParseErrorsAreOneLineWithoutTeuchosInternals) {
+  { std::ofstream("truncated_deck.xml") << "<ParameterList name=\"x\">\n<Parameter name=\"a\" type=\"int\" value=\"1\"/>\n<Para"; }
+  try {
+    params::read_deck("truncated_deck.xml");
+    FAIL();
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    expect_contains(msg, "truncated_deck.xml: not a valid Teuchos XML parameter list: XML parse error at line 3");
+    EXPECT_EQ(msg.find("Throw"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
   }
 }
 

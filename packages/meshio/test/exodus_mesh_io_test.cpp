@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <string>
 #include <vector>
@@ -231,6 +232,76 @@ TEST(ExodusMeshIo, BadConnectivityAndShellFaceSides) {
   msg = input_error([] { read_exodus_mesh("exodus_mesh_io_face.exo"); });
   EXPECT_NE(msg.find("exodus_mesh_io_face.exo"), std::string::npos) << msg;
   EXPECT_NE(msg.find("side set 1"), std::string::npos) << msg;
+}
+
+// Fuzzing regressions (docs/hostile_input.md). Files are crafted byte by byte or patched from a written mesh.
+
+std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+void write_bytes(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+/// Big-endian 32-bit integer, as netCDF classic headers store them.
+std::string be32(std::uint32_t v) {
+  return {static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8), static_cast<char>(v)};
+}
+
+// Reference: fuzz_exodus found that libnetcdf allocates (and touches) whatever a classic header declares
+// before checking it: a 3 kB file declaring a variable with 2^31 dimensions took 6.5 GB and 2 minutes. The
+// reader now checks the header first. This file: CDF-1, no dimensions, no attributes, one variable "x" with
+// 0x7fffffff dimension ids, then 64 zero bytes.
+TEST(ExodusMeshIo, NetcdfHeaderWithHugeDimensionCountIsAnInputError) {
+  const std::string path = "exodus_mesh_io_huge_rank.exo";
+  write_bytes(path, std::string("CDF\x01", 4) + be32(0) + be32(0) + be32(0) + be32(0) + be32(0) + be32(11) + be32(1) +
+                        be32(1) + std::string("x\0\0\0", 4) + be32(0x7fffffff) + std::string(64, '\0'));
+  const std::string msg = input_error([&] { read_exodus_mesh(path); });
+  EXPECT_NE(msg.find(path), std::string::npos) << msg;
+  EXPECT_NE(msg.find("corrupt netCDF header: variable dimension count 2147483647"), std::string::npos) << msg;
+}
+
+// Reference: same check for the other lists of the header: a truncated header and an unknown attribute type.
+TEST(ExodusMeshIo, NetcdfHeaderTruncatedOrBadTypeIsAnInputError) {
+  write_exodus_mesh(tri3_mesh(), "exodus_mesh_io_cut_src.exo");
+  const std::string bytes = read_bytes("exodus_mesh_io_cut_src.exo");
+  write_bytes("exodus_mesh_io_cut.exo", bytes.substr(0, 200));
+  std::string msg = input_error([] { read_exodus_mesh("exodus_mesh_io_cut.exo"); });
+  EXPECT_NE(msg.find("exodus_mesh_io_cut.exo: "), std::string::npos) << msg;
+  EXPECT_NE(msg.find(" netCDF header"), std::string::npos) << msg;
+  // Dimension list with one dimension "d" of length 1, then a global attribute "a" of type 99.
+  write_bytes("exodus_mesh_io_bad_type.exo", std::string("CDF\x01", 4) + be32(0) + be32(10) + be32(1) + be32(1) +
+                                                 std::string("d\0\0\0", 4) + be32(1) + be32(12) + be32(1) + be32(1) +
+                                                 std::string("a\0\0\0", 4) + be32(99) + be32(0) + be32(0) + be32(0));
+  msg = input_error([] { read_exodus_mesh("exodus_mesh_io_bad_type.exo"); });
+  EXPECT_NE(msg.find("exodus_mesh_io_bad_type.exo: corrupt netCDF header: unknown data type 99"), std::string::npos)
+      << msg;
+}
+
+/// Overwrites the length of dimension `name` in a netCDF-2 (64-bit offset) header written by write_exodus_mesh.
+void patch_dimension(std::string& bytes, const std::string& name, std::uint32_t length) {
+  std::string padded = name;
+  padded.resize((name.size() + 3) / 4 * 4, '\0');
+  const std::string key = be32(static_cast<std::uint32_t>(name.size())) + padded;
+  const auto at = bytes.find(key);
+  ASSERT_NE(at, std::string::npos) << name;
+  bytes.replace(at + key.size(), 4, be32(length));
+}
+
+// Reference: a valid netCDF header whose dimensions are far larger than the file: the reader used to allocate
+// the declared node count (here 2^30 nodes: 24 GB of coordinates) before reading. A classic file stores
+// every node, so the count is now checked against the file size first.
+TEST(ExodusMeshIo, HeaderCountsLargerThanTheFileAreAnInputError) {
+  write_exodus_mesh(tri3_mesh(), "exodus_mesh_io_big_src.exo");
+  std::string bytes = read_bytes("exodus_mesh_io_big_src.exo");
+  patch_dimension(bytes, "num_nodes", 1u << 30);
+  write_bytes("exodus_mesh_io_big_nodes.exo", bytes);
+  const std::string msg = input_error([] { read_exodus_mesh("exodus_mesh_io_big_nodes.exo"); });
+  EXPECT_NE(msg.find("exodus_mesh_io_big_nodes.exo: the file declares 1073741824 nodes, more than its"),
+            std::string::npos)
+      << msg;
 }
 
 }  // namespace

@@ -221,6 +221,27 @@ TEST(GmshReaderErrors, HostileCounts) {
   expect_input_error(write_file("huge_binary.msh", s), {"larger than the rest of the file"});
 }
 
+// Fuzzing regression (docs/hostile_input.md): a physical tag of 2147483647 is legal in Gmsh, but when a later
+// set clashed with it, "one more than the largest id" overflowed int (UBSan: signed integer overflow in
+// unique_id). Here curve "left" and point "origin" both have tag 2147483647: the point's node set must get
+// the smallest free id instead, 2 (1 is curve "bottom").
+TEST(GmshReaderErrors, LargestPhysicalTagClash) {
+  std::string s = read_whole(data_dir + "square_v22.msh");
+  auto replace = [&](const std::string& from, const std::string& to) {
+    const auto at = s.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    s.replace(at, from.size(), to);
+  };
+  replace("0 1 \"origin\"", "0 2147483647 \"origin\"");
+  replace("1 2 \"left\"", "1 2147483647 \"left\"");
+  replace("301 15 2 1 1 40", "301 15 2 2147483647 1 40");
+  replace("201 1 2 2 4 20 40", "201 1 2 2147483647 4 20 40");
+  const SerialMesh m = read_gmsh(write_file("max_tag.msh", s));
+  std::map<std::string, int> ids;
+  for (const auto& ns : m.node_sets) ids[ns.name] = ns.id;
+  EXPECT_EQ(ids, (std::map<std::string, int>{{"bottom", 1}, {"left", 2147483647}, {"origin", 2}}));
+}
+
 /// Reads every prefix length in [0, data.size()) with the given stride. A prefix must give an InputError
 /// naming the file unless it ends (up to blanks) with "$EndElements" or "$EndPeriodic" (then it is a
 /// complete file). Past the $MeshFormat section, the message must say the file looks truncated.

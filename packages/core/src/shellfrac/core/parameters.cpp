@@ -1,13 +1,20 @@
 #include "shellfrac/core/parameters.hpp"
 
 #include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <Teuchos_StringInputSource.hpp>
+#include <Teuchos_XMLObject.hpp>
 #include <Teuchos_XMLParameterListCoreHelpers.hpp>
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <string_view>
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
@@ -96,6 +103,106 @@ std::string closest(const std::string& name, const ParameterList& valid) {
   return best_d <= std::max<std::size_t>(2, name.size() / 3) ? best : std::string();
 }
 
+/// The useful part of a Teuchos exception text: Teuchos prefixes its message with the throwing source file,
+/// a throw count and the failed test ("./packages/teuchos/...:72:\n\nThrow number = 1\n\nThrow test that
+/// evaluated to true: ...\n\n<message>"); only <message> is for the user, on one line.
+std::string teuchos_message(const std::string& what) {
+  std::string text = what;
+  const std::string marker = "Throw test that evaluated to true:";
+  if (const auto at = text.find(marker); at != std::string::npos) {
+    const auto end = text.find("\n\n", at);
+    if (end != std::string::npos) text = text.substr(end + 2);
+  }
+  std::string out;
+  for (char c : text) {
+    if (c == '\n' || c == '\r' || c == '\t') c = ' ';
+    if (c == ' ' && (out.empty() || out.back() == ' ')) continue;
+    out += c;
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+
+/// True if `text` (surrounding blanks allowed) is a whole integer in [lo, hi].
+bool is_integer(std::string_view text, long long lo, long long hi) {
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  long long v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  return !text.empty() && ec == std::errc() && end == text.data() + text.size() && v >= lo && v <= hi;
+}
+
+/// True if `text` (surrounding blanks allowed) is a whole decimal number that strtod reads without overflow
+/// ("nan" and "inf" are numbers here: the range validators reject them with a clear message). Hexadecimal is
+/// refused: Teuchos reads it as a number in a scalar but as 0 in an array.
+bool is_real(const std::string& text) {
+  if (text.find_first_of("xX") != std::string::npos) return false;
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(begin, &end);
+  if (end == begin) return false;
+  while (*end != '\0' && std::isspace(static_cast<unsigned char>(*end))) ++end;
+  return *end == '\0' && !(errno == ERANGE && std::isinf(v));
+}
+
+/// Teuchos reads numbers with operator>> and keeps whatever prefix it could read: "0.01mm" is 0.01,
+/// "zero point three" is 0, "10.7" as an int is 10, and "{0, x, 1}" is {0, 0, 1}, all without an error. This
+/// walk of the XML checks that every numeric value (and array element) is a whole number of its type.
+void check_numbers(const Teuchos::XMLObject& xml, const std::string& file, const std::string& path) {
+  for (int i = 0; i < xml.numChildren(); ++i) {
+    const Teuchos::XMLObject& child = xml.getChild(i);
+    const std::string name = child.hasAttribute("name") ? child.getAttribute("name") : std::string("?");
+    const std::string child_path = path.empty() ? name : path + "->" + name;
+    if (child.getTag() == "ParameterList") {
+      check_numbers(child, file, child_path);
+      continue;
+    }
+    if (child.getTag() != "Parameter" || !child.hasAttribute("type") || !child.hasAttribute("value")) continue;
+    std::string type = child.getAttribute("type");
+    const std::string& value = child.getAttribute("value");
+    std::vector<std::string> items{value};
+    if (type.rfind("Array(", 0) == 0 && type.back() == ')') {  // "{a, b, c}"; Teuchos checks the braces
+      type = type.substr(6, type.size() - 7);
+      items.clear();
+      const auto open = value.find('{'), close = value.rfind('}');
+      if (open == std::string::npos || close == std::string::npos || close < open) continue;
+      const std::string inner = value.substr(open + 1, close - open - 1);
+      if (inner.find_first_not_of(" \t\r\n") == std::string::npos) continue;  // {}
+      for (std::size_t start = 0;;) {
+        const auto comma = inner.find(',', start);
+        items.push_back(inner.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+      }
+    }
+    const char* what = nullptr;
+    for (const std::string& item : items) {
+      if (type == "int" && !is_integer(item, std::numeric_limits<int>::min(), std::numeric_limits<int>::max()))
+        what = "an integer in [-2147483648, 2147483647]";
+      else if (type == "long long" && !is_integer(item, std::numeric_limits<long long>::min(),
+                                                  std::numeric_limits<long long>::max()))
+        what = "a 64-bit integer";
+      else if ((type == "double" || type == "float") && !is_real(item))
+        what = "a number";
+      if (what != nullptr) {
+        std::ostringstream os;
+        os << file << ": parameter '" << child_path << "' (type " << child.getAttribute("type") << "): ";
+        if (value.find('{') != std::string::npos) {
+          const auto first = item.find_first_not_of(" \t\r\n"), last = item.find_last_not_of(" \t\r\n");
+          os << "the element '" << (first == std::string::npos ? std::string() : item.substr(first, last - first + 1))
+             << "' of '" << value << "'";
+        } else {
+          os << "the value '" << value << "'";
+        }
+        os << " is not " << what;
+        throw InputError(os.str());
+      }
+    }
+  }
+}
+
 std::string value_string(const Teuchos::ParameterEntry& e) {
   std::ostringstream os;
   os << e.getAny();
@@ -128,8 +235,10 @@ RCP<ParameterList> read_deck(const std::string& file, MPI_Comm comm) {
         try {
           Teuchos::getParametersFromXmlString(text);
         } catch (const std::exception& e) {
-          SHELLFRAC_INPUT_REQUIRE(false, file << ": not a valid Teuchos XML parameter list: " << e.what());
+          SHELLFRAC_INPUT_REQUIRE(false, file << ": not a valid Teuchos XML parameter list: " << teuchos_message(e.what()));
         }
+        const Teuchos::XMLObject xml = Teuchos::StringInputSource(text).getObject();
+        check_numbers(xml, file, xml.hasAttribute("name") ? xml.getAttribute("name") : std::string());
       },
       0, comm);
   parallel::broadcast(text, 0, comm);

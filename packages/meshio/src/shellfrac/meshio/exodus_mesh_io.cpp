@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <new>
 #include <numeric>
 #include <string>
@@ -45,6 +46,16 @@ std::int64_t checked_count(std::int64_t n, const std::string& path, const char* 
   return n;
 }
 
+/// In a netCDF classic file (no compression) every declared entity is stored: n entities of at least
+/// `bytes_each` bytes must fit in the file's `file_bytes` (0 = no such bound: netCDF-4 / HDF5 file). Guards
+/// the allocations sized by header values against a hostile header.
+void check_stored(std::int64_t n, std::uint64_t bytes_each, std::uint64_t file_bytes, const std::string& path,
+                  const std::string& what) {
+  SHELLFRAC_INPUT_REQUIRE(file_bytes == 0 || static_cast<std::uint64_t>(n) <= file_bytes / bytes_each,
+                          path << ": the file declares " << n << " " << what << ", more than its " << file_bytes
+                               << " bytes can hold (truncated or corrupt file)");
+}
+
 /// Exodus entity id -> SerialMesh id (positive int).
 int checked_id(std::int64_t id, const std::string& path, const char* what) {
   SHELLFRAC_INPUT_REQUIRE(id > 0 && id <= exo::max_stored_int,
@@ -66,10 +77,12 @@ std::vector<std::int64_t> get_ids(int exo_id, ex_entity_type type, std::int64_t 
 
 /// Reads one set's entries (and extra list for side sets) as 1-based file values.
 void get_set(int exo_id, ex_entity_type type, std::int64_t id, std::vector<std::int64_t>& entries,
-             std::vector<std::int64_t>* extra, const std::string& path, const std::string& what) {
+             std::vector<std::int64_t>* extra, const std::string& path, const std::string& what,
+             std::uint64_t file_bytes) {
   std::int64_t n = 0, ndf = 0;
   SHELLFRAC_EXO_INPUT_CHECK(ex_get_set_param(exo_id, type, id, &n, &ndf), path << ": cannot read " << what);
   checked_count(n, path, what.c_str());
+  check_stored(n, extra ? 8 : 4, file_bytes, path, "entries in " + what);
   entries.assign(static_cast<std::size_t>(n), 0);
   if (extra) extra->assign(static_cast<std::size_t>(n), 0);
   if (n > 0)
@@ -92,9 +105,133 @@ std::vector<GlobalId> to_sorted_indices(const std::vector<std::int64_t>& v, std:
   return out;
 }
 
+/// Big-endian reader over the header of a netCDF classic file, bounds-checked against the file size.
+class NetcdfHeader {
+ public:
+  NetcdfHeader(const std::string& path, std::uintmax_t size) : path_(path), in_(path, std::ios::binary), size_(size) {}
+
+  std::uint64_t remaining() const { return size_ - pos_; }
+  std::uint64_t position() const { return pos_; }
+
+  /// Reads an n-byte (4 or 8) unsigned big-endian integer.
+  std::uint64_t get(int n, const char* what) {
+    SHELLFRAC_INPUT_REQUIRE(remaining() >= static_cast<std::uint64_t>(n),
+                            path_ << ": truncated netCDF header at byte " << pos_ << " (reading " << what << ")");
+    unsigned char b[8] = {};
+    in_.read(reinterpret_cast<char*>(b), n);
+    SHELLFRAC_INPUT_REQUIRE(in_.gcount() == n, path_ << ": cannot read the netCDF header at byte " << pos_);
+    pos_ += static_cast<std::uint64_t>(n);
+    std::uint64_t v = 0;
+    for (int i = 0; i < n; ++i) v = (v << 8) | b[i];
+    return v;
+  }
+  /// Skips n bytes (which must be in the file).
+  void skip(std::uint64_t n, const char* what) {
+    SHELLFRAC_INPUT_REQUIRE(n <= remaining(), path_ << ": truncated netCDF header at byte " << pos_ << " (" << what
+                                                    << " of " << n << " bytes)");
+    in_.seekg(static_cast<std::streamoff>(n), std::ios::cur);
+    pos_ += n;
+  }
+  /// A count of items of at least min_bytes each that must fit in the rest of the file.
+  std::uint64_t count(int n, std::uint64_t min_bytes, const char* what) {
+    const std::uint64_t c = get(n, what);
+    SHELLFRAC_INPUT_REQUIRE(c <= remaining() / min_bytes,
+                            path_ << ": corrupt netCDF header: " << what << " " << c << " at byte " << pos_ - n
+                                  << " is more than the " << size_ << "-byte file can hold");
+    return c;
+  }
+
+ private:
+  const std::string& path_;
+  std::ifstream in_;
+  std::uint64_t size_;
+  std::uint64_t pos_ = 0;
+};
+
+/// Checks the header of a netCDF classic file (CDF-1, CDF-2 or CDF-5; "NetCDF Classic Format Specification")
+/// before the netCDF library parses it: every count must fit in the file, every type and dimension id must be
+/// valid. libnetcdf allocates what a header declares before checking it against the file: a 3 kB file
+/// declaring a variable with 2^31 dimensions made it allocate and touch 6.5 GB. Returns false when the file
+/// is not a netCDF classic file (netCDF-4 / HDF5 files are left to the library).
+bool check_netcdf_classic_header(const std::string& path, std::uintmax_t size) {
+  NetcdfHeader h(path, size);
+  if (size < 4) return false;
+  const std::uint64_t magic = h.get(4, "the magic number");
+  if ((magic >> 8) != 0x434446u) return false;  // "CDF"
+  const int version = static_cast<int>(magic & 0xffu);
+  SHELLFRAC_INPUT_REQUIRE(version == 1 || version == 2 || version == 5,
+                          path << ": netCDF classic file of unknown version " << version);
+  const int nn = version == 5 ? 8 : 4;  // size of counts, lengths and (CDF-5) dimension ids
+  constexpr std::uint64_t tag_dimension = 10, tag_variable = 11, tag_attribute = 12;
+  h.get(nn, "the record count");
+  // A list is ABSENT (two zeros) or tag + count; `tag` is the expected tag.
+  auto list_count = [&](std::uint64_t tag, std::uint64_t min_bytes, const char* what) -> std::uint64_t {
+    const std::uint64_t t = h.get(4, what);
+    if (t == 0) {
+      SHELLFRAC_INPUT_REQUIRE(h.get(nn, what) == 0, path << ": corrupt netCDF header: absent " << what
+                                                         << " with a non-zero count");
+      return 0;
+    }
+    SHELLFRAC_INPUT_REQUIRE(t == tag, path << ": corrupt netCDF header: bad tag " << t << " for the " << what
+                                           << " at byte " << h.position() - 4);
+    return h.count(nn, min_bytes, what);
+  };
+  auto name = [&](const char* what) {
+    const std::uint64_t n = h.count(nn, 1, what);
+    h.skip((n + 3) / 4 * 4, what);
+  };
+  auto type_size = [&](std::uint64_t type) -> std::uint64_t {
+    switch (type) {
+      case 1: case 2: case 7: return 1;  // byte, char, ubyte
+      case 3: case 8: return 2;          // short, ushort
+      case 4: case 5: case 9: return 4;  // int, float, uint
+      case 6: case 10: case 11: return 8;  // double, int64, uint64
+      default: break;
+    }
+    SHELLFRAC_INPUT_REQUIRE(false, path << ": corrupt netCDF header: unknown data type " << type << " at byte "
+                                        << h.position() - 4);
+    return 0;
+  };
+  auto attributes = [&](const char* what) {
+    const std::uint64_t n = list_count(tag_attribute, static_cast<std::uint64_t>(2 * nn + 4), what);
+    for (std::uint64_t i = 0; i < n; ++i) {
+      name("attribute name length");
+      const std::uint64_t bytes = type_size(h.get(4, "attribute type"));
+      const std::uint64_t values = h.count(nn, bytes, "attribute value count");
+      h.skip((values * bytes + 3) / 4 * 4, "attribute values");
+    }
+  };
+  const std::uint64_t num_dims = list_count(tag_dimension, static_cast<std::uint64_t>(2 * nn), "dimension list");
+  for (std::uint64_t i = 0; i < num_dims; ++i) {
+    name("dimension name length");
+    h.get(nn, "dimension length");
+  }
+  attributes("global attribute list");
+  const int offset_size = version == 1 ? 4 : 8;
+  const std::uint64_t num_vars =
+      list_count(tag_variable, static_cast<std::uint64_t>(3 * nn + 4 + 4 + nn + offset_size), "variable list");
+  for (std::uint64_t i = 0; i < num_vars; ++i) {
+    name("variable name length");
+    const std::uint64_t rank = h.count(nn, static_cast<std::uint64_t>(nn), "variable dimension count");
+    for (std::uint64_t k = 0; k < rank; ++k)
+      SHELLFRAC_INPUT_REQUIRE(h.get(nn, "dimension id") < num_dims,
+                              path << ": corrupt netCDF header: a variable refers to dimension id beyond the "
+                                   << num_dims << " dimensions");
+    attributes("variable attribute list");
+    type_size(h.get(4, "variable type"));
+    h.get(nn, "variable size");
+    h.get(offset_size, "variable offset");
+  }
+  return true;
+}
+
 mesh::SerialMesh read_exodus_impl(const std::string& path) {
   std::error_code ec;
   SHELLFRAC_INPUT_REQUIRE(std::filesystem::is_regular_file(path, ec), path << ": Exodus file not found");
+  const std::uintmax_t file_size = std::filesystem::file_size(path, ec);
+  SHELLFRAC_INPUT_REQUIRE(!ec, path << ": cannot read the file size (" << ec.message() << ")");
+  // Upper bound for counts read from the header (0 = none: netCDF-4 files may be compressed).
+  const std::uint64_t stored_bytes = check_netcdf_classic_header(path, file_size) ? file_size : 0;
   exo::File file = exo::open_read(path);
   SHELLFRAC_INPUT_REQUIRE(file.is_open(), path << ": cannot open as an Exodus II file (" << exo::last_error() << ")");
   const int id = file.id();
@@ -110,6 +247,12 @@ mesh::SerialMesh read_exodus_impl(const std::string& path) {
   checked_count(p.num_side_sets, path, "side set");
   checked_count(p.num_elem_sets, path, "element set");
   SHELLFRAC_INPUT_REQUIRE(num_elem > 0 && p.num_elem_blk > 0, path << ": the file has no elements");
+  check_stored(num_nodes, 4 * static_cast<std::uint64_t>(p.num_dim), stored_bytes, path, "nodes");
+  check_stored(num_elem, 3 * 4, stored_bytes, path, "elements");
+  check_stored(p.num_elem_blk, 4, stored_bytes, path, "element blocks");
+  check_stored(p.num_node_sets, 4, stored_bytes, path, "node sets");
+  check_stored(p.num_side_sets, 4, stored_bytes, path, "side sets");
+  check_stored(p.num_elem_sets, 4, stored_bytes, path, "element sets");
 
   mesh::SerialMesh m;
   m.source = path;
@@ -141,6 +284,7 @@ mesh::SerialMesh read_exodus_impl(const std::string& path) {
     blk.topology[MAX_STR_LENGTH] = '\0';
     const std::string type = blk.topology;
     checked_count(blk.num_entry, path, what.c_str());
+    check_stored(blk.num_entry, 3 * 4, stored_bytes, path, "elements in " + what);
     bool shell = false;
     int npe = triangle_type_nodes(type, shell);
     if (blk.num_entry == 0) {  // Exodus stores empty blocks with type "NULL" and 0 nodes per element
@@ -200,7 +344,7 @@ mesh::SerialMesh read_exodus_impl(const std::string& path) {
       ns.name = default_name(names[s], "nodeset", ids[s]);
       const std::string what = "node set " + std::to_string(ids[s]) + " ('" + ns.name + "')";
       ns.id = checked_id(ids[s], path, what.c_str());
-      get_set(id, EX_NODE_SET, ids[s], entries, nullptr, path, what);
+      get_set(id, EX_NODE_SET, ids[s], entries, nullptr, path, what, stored_bytes);
       ns.nodes = to_sorted_indices(entries, num_nodes, path, what, "node");
       m.node_sets.push_back(std::move(ns));
     }
@@ -216,7 +360,7 @@ mesh::SerialMesh read_exodus_impl(const std::string& path) {
       ss.name = default_name(names[s], "sideset", ids[s]);
       const std::string what = "side set " + std::to_string(ids[s]) + " ('" + ss.name + "')";
       ss.id = checked_id(ids[s], path, what.c_str());
-      get_set(id, EX_SIDE_SET, ids[s], elems, &sides, path, what);
+      get_set(id, EX_SIDE_SET, ids[s], elems, &sides, path, what, stored_bytes);
       for (std::size_t k = 0; k < elems.size(); ++k) {
         const std::int64_t e = elems[k];
         SHELLFRAC_INPUT_REQUIRE(e >= 1 && e <= num_elem, path << ": " << what << " refers to element " << e
@@ -246,7 +390,7 @@ mesh::SerialMesh read_exodus_impl(const std::string& path) {
       es.name = default_name(names[s], "elemset", ids[s]);
       const std::string what = "element set " + std::to_string(ids[s]) + " ('" + es.name + "')";
       es.id = checked_id(ids[s], path, what.c_str());
-      get_set(id, EX_ELEM_SET, ids[s], entries, nullptr, path, what);
+      get_set(id, EX_ELEM_SET, ids[s], entries, nullptr, path, what, stored_bytes);
       es.elements = to_sorted_indices(entries, num_elem, path, what, "element");
       m.element_sets.push_back(std::move(es));
     }

@@ -735,12 +735,19 @@ std::string unique_name(std::string name, int id, std::vector<std::string>& take
   return name;
 }
 
-/// `wanted` if it is positive and not in `taken`, else one more than the largest taken id; recorded.
+/// `wanted` if it is positive and not in `taken`, else one more than the largest taken id (or, when that
+/// largest id is INT_MAX, the smallest free positive id); recorded.
 int unique_id(int wanted, std::vector<int>& taken) {
+  auto is_taken = [&](int id) { return std::find(taken.begin(), taken.end(), id) != taken.end(); };
   int id = wanted;
-  if (id <= 0 || std::find(taken.begin(), taken.end(), id) != taken.end()) {
-    id = 1;
-    for (int t : taken) id = std::max(id, t + 1);
+  if (id <= 0 || is_taken(id)) {
+    const int largest = taken.empty() ? 0 : *std::max_element(taken.begin(), taken.end());
+    if (largest < std::numeric_limits<int>::max()) {
+      id = std::max(largest, 0) + 1;
+    } else {  // a physical tag of 2147483647 is legal in Gmsh: no "next" id, take a free one
+      for (id = 1; is_taken(id); ++id) {
+      }
+    }
   }
   taken.push_back(id);
   return id;

@@ -87,29 +87,46 @@ KOKKOS_INLINE_FUNCTION CohesiveInterfaceResult cohesive_interface_forces(
   return r;
 }
 
-/// Nucleation check of an intact interface (math.md §9.5; SEED eqs. 27-31, 51): the average of the two sides'
-/// edge tractions, n = (t^+ - t^-)/2 with t^E the traction on element E across its edge from its projected
-/// resultants (disc::dg_element_forces edge_nm output: [g][0..2] force, [3..5] couple, in E's own edge-point
-/// order), the equivalent traction with the current nu, and the edge average
-///   fbar = (1/h_e) sum_g omega_g (n_eq,g / S0 - 1).
-/// edge_minus[g], edge_plus[g']: the two sides' values; the plus side's point matched with the minus side's
-/// point g is g' = g if its parameter s_plus[g] equals edge3_rule.s[g], else 2 - g (a symmetric rule).
-/// nu (out) is the co-normal at each point (kept if degenerate). Returns fbar; the edge activates if fbar >= 0.
+/// Average edge force and couple of an intact interface at its edge points (math.md §9.5 step 1; SEED eqs. 27-28):
+/// n = (t^+ - t^-)/2 with t^E the traction on element E across its edge from its projected resultants
+/// (disc::dg_element_forces edge_nm output: [g][0..2] force, [3..5] couple, in E's own edge-point order).
+/// The plus side's point matched with the minus side's point g is g' = g if its parameter s_plus[g] equals
+/// edge3_rule.s[g], else 2 - g (a symmetric rule). Returns a cheap upper bound of fbar (below): with
+/// n_eq^2 <= c_n |n|^2 + c_m |m|^2 for any unit nu, c_n = max(1, 1/alpha1^2), c_m = max(1/alpha2^2, 1/alpha3^2)/h^2.
+/// If it is negative the edge cannot activate, and the co-normals need not be computed (the common case).
+KOKKOS_INLINE_FUNCTION double interface_edge_tractions(const disc::DgInterfaceRef& I, const materials::CohesiveParams& p,
+                                                       const double edge_minus[disc::num_edge_points][6],
+                                                       const double edge_plus[disc::num_edge_points][6],
+                                                       double n[disc::num_edge_points][3],
+                                                       double m[disc::num_edge_points][3]) {
+  const double cn = p.alpha1 < 1 ? 1 / (p.alpha1 * p.alpha1) : 1.0;
+  const double am = p.alpha2 < p.alpha3 ? p.alpha2 : p.alpha3;
+  const double cm = 1 / (am * am * p.h * p.h);
+  double fbound = 0;
+  for (int g = 0; g < disc::num_edge_points; ++g) {
+    const int gq = std::abs(I.s_plus[g] - disc::edge3_rule.s[g]) < 1e-12 ? g : disc::num_edge_points - 1 - g;
+    for (int c = 0; c < 3; ++c) {
+      n[g][c] = 0.5 * (edge_plus[gq][c] - edge_minus[g][c]);
+      m[g][c] = 0.5 * (edge_plus[gq][3 + c] - edge_minus[g][3 + c]);
+    }
+    fbound += I.omega[g] * (std::sqrt(cn * disc::dot3(n[g], n[g]) + cm * disc::dot3(m[g], m[g])) / p.S0 - 1.0);
+  }
+  return fbound * I.inv_he;
+}
+
+/// Nucleation check of an intact interface (math.md §9.5; SEED eqs. 29-31, 51) from the average edge force and
+/// couple n, m of interface_edge_tractions: the equivalent traction with the current co-normal and the edge
+/// average fbar = (1/h_e) sum_g omega_g (n_eq,g / S0 - 1). nu (out): the co-normal at each point (kept if
+/// degenerate). Returns fbar; the edge activates if fbar >= 0.
 KOKKOS_INLINE_FUNCTION double interface_nucleation(const disc::DgInterfaceRef& I, const materials::CohesiveParams& p,
                                                    const double xm[3][3], const double tm[2][3], const double tp[2][3],
-                                                   const double edge_minus[disc::num_edge_points][6],
-                                                   const double edge_plus[disc::num_edge_points][6],
+                                                   const double n[disc::num_edge_points][3],
+                                                   const double m[disc::num_edge_points][3],
                                                    double nu[disc::num_edge_points][3]) {
   double fbar = 0;
   for (int g = 0; g < disc::num_edge_points; ++g) {
-    const int gq = std::abs(I.s_plus[g] - disc::edge3_rule.s[g]) < 1e-12 ? g : disc::num_edge_points - 1 - g;
-    double n[3], m[3];
-    for (int c = 0; c < 3; ++c) {
-      n[c] = 0.5 * (edge_plus[gq][c] - edge_minus[g][c]);
-      m[c] = 0.5 * (edge_plus[gq][3 + c] - edge_minus[g][3 + c]);
-    }
     interface_conormal(I, g, xm, tm, tp, nu[g]);
-    fbar += I.omega[g] * (materials::equivalent_traction(p, n, m, nu[g]) / p.S0 - 1.0);
+    fbar += I.omega[g] * (materials::equivalent_traction(p, n[g], m[g], nu[g]) / p.S0 - 1.0);
   }
   return fbar * I.inv_he;
 }

@@ -1138,6 +1138,10 @@ void ShellDynamics::Impl::nucleate() {
   for (std::size_t i = 0; i < ifs.size(); ++i) {
     if (!breakable[i] || istate[i] != intact) continue;
     const auto& fc = ifs[i];
+    const auto* em = reinterpret_cast<const double(*)[6]>(&flux[fc.minus * nflux_cols + nflux + fc.minus_edge * 18]);
+    const auto* ep = reinterpret_cast<const double(*)[6]>(&flux[fc.plus * nflux_cols + nflux + fc.plus_edge * 18]);
+    double n[3][3], m[3][3];
+    if (interface_edge_tractions(iref[i], cparams[i], em, ep, n, m) < 0) continue;  // cannot activate: cheap
     double xm[3][3], tm[2][3], tq[2][3];
     for (int j = 0; j < 3; ++j)
       for (int c = 0; c < 3; ++c) xm[j][c] = x[fc.minus * nx + disc::edge_node(fc.minus_edge, j) * 3 + c];
@@ -1146,10 +1150,8 @@ void ShellDynamics::Impl::nucleate() {
         tm[j][c] = t[fc.minus * nt + disc::edge_node(fc.minus_edge, j) * 3 + c];
         tq[j][c] = t[fc.plus * nt + disc::edge_node(fc.plus_edge, j) * 3 + c];
       }
-    const auto* em = reinterpret_cast<const double(*)[6]>(&flux[fc.minus * nflux_cols + nflux + fc.minus_edge * 18]);
-    const auto* ep = reinterpret_cast<const double(*)[6]>(&flux[fc.plus * nflux_cols + nflux + fc.plus_edge * 18]);
     double nu[3][3];
-    if (interface_nucleation(iref[i], cparams[i], xm, tm, tq, em, ep, nu) < 0) continue;
+    if (interface_nucleation(iref[i], cparams[i], xm, tm, tq, n, m, nu) < 0) continue;
     istate[i] = cparams[i].Gamma > 0 ? cohesive : separated;
     for (int g = 0; g < 3; ++g) {
       dmax[i * 3 + g] = 0;
