@@ -1,0 +1,187 @@
+#!/usr/bin/env python3
+"""Initial-velocity sweep of the clamped 6061-T6 beam-blast case (paper §6.3, benchmarks.md §2).
+
+For each V0 this writes a Gmsh mesh (the Rectangle generator's 'Alternating' mesh, plus a node set
+'centre' on the line x = L/2 for a probe) and a deck, runs shellfrac serially, and reports the first
+activation time, the centre deflection then, the broken edges' distance from the nearer support, and
+the plastic strain there. Writes <outdir>/sweep.csv and prints a Markdown table.
+
+Columns: t_act/w_act = time and |centre deflection| of the first activation (history, every step);
+t_last_act/w_last_act = the same for the last one; where_first/dist_first_mm = centroid distances from
+the nearer support of the elements damaged at the first Exodus output with damage ('supports' = within
+15 mm or 2 cells); where_end/dist_end_mm = the same at the last output; eps_p_frame = max plastic strain
+of those elements at that first output (t_frame); v_centre_end = downward centre velocity at the end
+(about V0: the beam has come off the supports).
+
+  /usr/bin/python3 tools/beam_blast_sweep.py -v 40:240:20 -c 40x5 -t 1e-3 -o /tmp/blast_sweep
+  /usr/bin/python3 tools/beam_blast_sweep.py -v 62 101 225 -c 80x10 -t 2e-4 -o /tmp/b --alpha1 2
+"""
+import argparse, csv, os, subprocess, sys
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+L, W, H, RHO, SIGC, E, NU = 0.2, 0.025, 6.53e-3, 2693.0, 375e6, 68.9e9, 0.343
+
+COLUMNS = ["V0", "mesh", "alpha1", "t_act_us", "w_act_mm", "where_first", "dist_first_mm", "t_last_act_us",
+           "w_last_act_mm", "n_act_events", "n_sep", "n_frag", "where_end", "dist_end_mm", "w_max_mm",
+           "v_centre_end", "t_frame_us", "eps_p_frame", "W_p_J", "rel_energy_err", "t_end_us", "rc"]
+
+DECK = """<ParameterList name="shellfrac">
+  <ParameterList name="Mesh">
+    <Parameter name="Source" type="string" value="File"/>
+    <Parameter name="File" type="string" value="{mesh}"/>
+  </ParameterList>
+  <ParameterList name="Blocks"><ParameterList name="beam">
+    <Parameter name="Thickness" type="double" value="{h}"/>
+    <Parameter name="Material" type="string" value="6061-T6"/>
+  </ParameterList></ParameterList>
+  <ParameterList name="Materials"><ParameterList name="6061-T6">
+    <Parameter name="Model" type="string" value="Resultant Plasticity"/>
+    <Parameter name="Density" type="double" value="{rho}"/>
+    <Parameter name="Young's Modulus" type="double" value="{E}"/>
+    <Parameter name="Poisson's Ratio" type="double" value="{nu}"/>
+    <Parameter name="Yield Stress" type="double" value="275e6"/>
+    <Parameter name="Hardening Modulus" type="double" value="1.33e9"/>
+    <Parameter name="Cohesive Strength" type="double" value="{sigc}"/>
+    <Parameter name="Fracture Energy" type="double" value="0"/>
+  </ParameterList></ParameterList>
+  <ParameterList name="Fracture">
+    <Parameter name="Alpha 1" type="double" value="{alpha1}"/>
+  </ParameterList>
+  <ParameterList name="Time Integration">
+    <Parameter name="End Time" type="double" value="{tend}"/>
+    <Parameter name="History Interval" type="int" value="1"/>
+    <Parameter name="Output Interval" type="double" value="{dtout}"/>
+  </ParameterList>
+  <ParameterList name="Boundary Conditions">
+    <ParameterList name="left"><Parameter name="Type" type="string" value="Clamped"/>
+      <Parameter name="Node Set" type="string" value="x_min"/></ParameterList>
+    <ParameterList name="right"><Parameter name="Type" type="string" value="Clamped"/>
+      <Parameter name="Node Set" type="string" value="x_max"/></ParameterList>
+  </ParameterList>
+  <ParameterList name="Initial Conditions"><ParameterList name="impulse">
+    <Parameter name="Elements" type="string" value="all"/>
+    <Parameter name="Velocity" type="Array(double)" value="{{0.0, 0.0, {vz}}}"/>
+  </ParameterList></ParameterList>
+  <ParameterList name="Output">
+    <Parameter name="Base Name" type="string" value="{name}"/>
+    <Parameter name="Probes" type="Array(string)" value="{{centre}}"/>
+  </ParameterList>
+</ParameterList>
+"""
+
+
+def write_mesh(path, nx, ny):
+    """Gmsh 2.2: nx x ny cells, chessboard diagonals, curves x_min/x_max, point set centre (x = L/2)."""
+    tag = lambda i, j: j * (nx + 1) + i + 1
+    nodes = [f"{tag(i, j)} {i * L / nx:.16g} {j * W / ny:.16g} 0" for j in range(ny + 1) for i in range(nx + 1)]
+    els = []
+    for j in range(ny):
+        for i in range(nx):
+            a, b, c, d = tag(i, j), tag(i + 1, j), tag(i + 1, j + 1), tag(i, j + 1)
+            els += [[a, b, c], [a, c, d]] if (i + j) % 2 == 0 else [[a, b, d], [b, c, d]]
+    lines = [f"2 2 1 1 {' '.join(map(str, t))}" for t in els]
+    lines += [f"1 2 {g} {g} {tag(i, j)} {tag(i, j + 1)}" for g, i in ((2, 0), (3, nx)) for j in range(ny)]
+    lines += [f"15 2 4 4 {tag(nx // 2, j)}" for j in range(ny + 1)]
+    with open(path, "w") as f:
+        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n4\n2 1 \"beam\"\n1 2 \"x_min\"\n"
+                "1 3 \"x_max\"\n0 4 \"centre\"\n$EndPhysicalNames\n")
+        f.write(f"$Nodes\n{len(nodes)}\n" + "\n".join(nodes) + "\n$EndNodes\n")
+        f.write(f"$Elements\n{len(lines)}\n" + "\n".join(f"{k + 1} {s}" for k, s in enumerate(lines))
+                + "\n$EndElements\n")
+
+
+def damage_info(exo, nx):
+    """Damaged elements (Gamma = 0: damage = 1 once an edge of the element is activated) at the first
+    output with damage and at the last output: distances [mm] of their centroids from the nearer support,
+    and their max eq. plastic strain at that first output (time t_frame)."""
+    import netCDF4
+    with netCDF4.Dataset(exo) as d:
+        names = [b"".join(n.compressed()).decode() for n in d.variables["name_elem_var"][:]]
+        var = lambda n: d.variables[f"vals_elem_var{names.index(n) + 1}eb1"][:]
+        dam, eps, t = var("damage"), var("eq_plastic_strain"), d.variables["time_whole"][:]
+        xc = d.variables["coordx"][:][d.variables["connect1"][:][:, :3] - 1].mean(axis=1)
+    hit = np.nonzero((dam > 0).any(axis=1))[0]
+    if not len(hit):
+        return {}
+    dist = np.minimum(xc, L - xc) * 1e3
+    near = max(15.0, 2 * L / nx * 1e3)          # "at the supports": within 15 mm (2.3 h) or 2 cells
+    e0, e1 = np.nonzero(dam[hit[0]] > 0)[0], np.nonzero(dam[-1] > 0)[0]
+    where = lambda d: "supports" if d.max() <= near else ("elsewhere" if d.min() > near else "both")
+    dlist = lambda d: " ".join(f"{v:.1f}" for v in np.unique(np.round(d, 1)))
+    return dict(where_first=where(dist[e0]), dist_first_mm=dlist(dist[e0]), t_frame_us=t[hit[0]] * 1e6,
+                eps_p_frame=float(eps[hit[0], e0].max()), where_end=where(dist[e1]), dist_end_mm=dlist(dist[e1]))
+
+
+def run_one(v0, nx, ny, tend, outdir, binary, alpha1, dtout):
+    name = f"v{v0:g}_{nx}x{ny}" + ("" if alpha1 == 1 else f"_a{alpha1:g}")
+    mesh = os.path.join(outdir, f"beam_{nx}x{ny}.msh")
+    if not os.path.exists(mesh):
+        write_mesh(mesh, nx, ny)
+    deck = os.path.join(outdir, name + ".xml")
+    with open(deck, "w") as f:
+        f.write(DECK.format(mesh=os.path.basename(mesh), h=H, rho=RHO, E=E, nu=NU, sigc=SIGC, alpha1=alpha1, tend=tend,
+                            dtout=dtout, vz=-v0, name=name))
+    with open(os.path.join(outdir, name + ".log"), "w") as log:
+        rc = subprocess.run([binary, deck], cwd=outdir, stdout=log, stderr=subprocess.STDOUT,
+                            env=dict(os.environ, OMP_NUM_THREADS="1")).returncode
+    row = dict(V0=v0, mesh=f"{nx}x{ny}", alpha1=alpha1, rc=rc)
+    try:
+        hist = np.genfromtxt(os.path.join(outdir, name + "_history.csv"), delimiter=",", names=True)
+    except OSError:
+        return row
+    t, w, ncoh = hist["time"], np.abs(hist["centre_displ_z"]), hist["num_cohesive_edges"]
+    act = np.nonzero(np.diff(ncoh) > 0)[0] + 1          # rows where edges were activated
+    row.update(t_end_us=t[-1] * 1e6, n_act_events=len(act))
+    if len(act):
+        k, kl = act[0], act[-1]
+        row.update(t_act_us=t[k] * 1e6, w_act_mm=w[k] * 1e3, t_last_act_us=t[kl] * 1e6, w_last_act_mm=w[kl] * 1e3)
+    row.update(w_max_mm=w.max() * 1e3, v_centre_end=-hist["centre_vel_z"][-1],
+               n_sep=int(hist["num_separated_edges"][-1]), n_frag=int(hist["num_fragments"][-1]))
+    try:
+        row.update(damage_info(os.path.join(outdir, name + ".exo"), nx))
+    except (OSError, KeyError, ValueError) as e:
+        print(f"  {name}.exo: {e}", file=sys.stderr)
+    row.update(W_p_J=hist["plastic_dissipation"][-1],
+               rel_energy_err=np.max(np.abs(hist["energy_balance_error"])) / hist["kinetic_energy"][0])
+    return row
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("-v", "--velocities", nargs="+", required=True, help="V0 [m/s] values or ranges lo:hi:step")
+    p.add_argument("-c", "--cells", default="40x5", help="cells along x and y, e.g. 40x5 (x even)")
+    p.add_argument("-t", "--end-time", type=float, default=1e-3)
+    p.add_argument("-o", "--outdir", default="beam_blast_sweep")
+    p.add_argument("--alpha1", type=float, default=1.0, help="Fracture->Alpha 1 (1 = paper)")
+    p.add_argument("--output-interval", type=float, default=1e-5, help="Exodus output interval [s]")
+    p.add_argument("--binary", default=os.path.join(ROOT, "build/apps/shellfrac/shellfrac"))
+    a = p.parse_args()
+    vs = []
+    for s in a.velocities:
+        lo, hi, st = (list(map(float, s.split(":"))) + [1.0])[:3] if ":" in s else (float(s), float(s), 1.0)
+        vs += list(np.arange(lo, hi + 0.5 * st, st))
+    nx, ny = map(int, a.cells.lower().split("x"))
+    if nx % 2:
+        sys.exit("the number of cells along x must be even (centre probe)")
+    os.makedirs(a.outdir, exist_ok=True)
+    rows = []
+    for v in vs:
+        rows.append(run_one(float(v), nx, ny, a.end_time, os.path.abspath(a.outdir), a.binary, a.alpha1,
+                            a.output_interval))
+        print(f"  V0 = {v:g} m/s: rc {rows[-1]['rc']}, t_act {rows[-1].get('t_act_us', '-')} us", file=sys.stderr)
+    keys = [k for k in COLUMNS if any(k in r for r in rows)]
+    with open(os.path.join(a.outdir, "sweep.csv"), "w", newline="") as f:
+        wr = csv.DictWriter(f, keys)
+        wr.writeheader()
+        wr.writerows(rows)
+    fmt = lambda x: f"{x:.4g}" if isinstance(x, float) else str(x)
+    print(f"S0 = h sigma_c = {H * SIGC:.4g} N/m; elastic shear at the clamp rho h c_s V0 = S0 at V0 = "
+          f"{SIGC / (RHO * np.sqrt(5 / 6 * E / (2 * (1 + NU)) / RHO)):.1f} m/s (kappa = 5/6)\n")
+    print("| " + " | ".join(keys) + " |\n|" + "---|" * len(keys))
+    for r in rows:
+        print("| " + " | ".join(fmt(r.get(k, "")) for k in keys) + " |")
+
+
+if __name__ == "__main__":
+    main()
