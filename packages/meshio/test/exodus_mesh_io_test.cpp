@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -280,26 +281,138 @@ TEST(ExodusMeshIo, NetcdfHeaderTruncatedOrBadTypeIsAnInputError) {
       << msg;
 }
 
-/// Overwrites the length of dimension `name` in a netCDF-2 (64-bit offset) header written by write_exodus_mesh.
-void patch_dimension(std::string& bytes, const std::string& name, std::uint32_t length) {
-  std::string padded = name;
-  padded.resize((name.size() + 3) / 4 * 4, '\0');
-  const std::string key = be32(static_cast<std::uint32_t>(name.size())) + padded;
-  const auto at = bytes.find(key);
-  ASSERT_NE(at, std::string::npos) << name;
-  bytes.replace(at + key.size(), 4, be32(length));
+/// Copies the netCDF file `src` to `dst` (64-bit offset format) with the dimension num_nodes set to `nodes`,
+/// the coordinate variables defined last and never written, then cuts the file to `keep` bytes: a small file
+/// whose header is valid for netCDF but declares far more nodes than it stores.
+void copy_with_missing_coordinates(const std::string& src, const std::string& dst, std::size_t nodes,
+                                   std::uintmax_t keep) {
+  int in = -1, out = -1, old_fill = 0, ndims = 0, nvars = 0, ngatts = 0, unlimited = -1;
+  ASSERT_EQ(nc_open(src.c_str(), NC_NOWRITE, &in), NC_NOERR);
+  ASSERT_EQ(nc_create(dst.c_str(), NC_CLOBBER | NC_64BIT_OFFSET, &out), NC_NOERR);
+  ASSERT_EQ(nc_set_fill(out, NC_NOFILL, &old_fill), NC_NOERR);
+  ASSERT_EQ(nc_inq(in, &ndims, &nvars, &ngatts, &unlimited), NC_NOERR);
+  char name[NC_MAX_NAME + 1];
+  for (int d = 0; d < ndims; ++d) {
+    std::size_t len = 0;
+    int id = -1;
+    ASSERT_EQ(nc_inq_dim(in, d, name, &len), NC_NOERR);
+    if (std::string(name) == "num_nodes") len = nodes;
+    ASSERT_EQ(nc_def_dim(out, name, d == unlimited ? NC_UNLIMITED : len, &id), NC_NOERR);
+    ASSERT_EQ(id, d);
+  }
+  for (int a = 0; a < ngatts; ++a) {
+    ASSERT_EQ(nc_inq_attname(in, NC_GLOBAL, a, name), NC_NOERR);
+    ASSERT_EQ(nc_copy_att(in, NC_GLOBAL, name, out, NC_GLOBAL), NC_NOERR);
+  }
+  auto is_coordinate = [](const std::string& n) { return n == "coordx" || n == "coordy" || n == "coordz"; };
+  std::vector<int> order, data_vars;
+  for (int pass = 0; pass < 2; ++pass)
+    for (int v = 0; v < nvars; ++v) {
+      ASSERT_EQ(nc_inq_varname(in, v, name), NC_NOERR);
+      if (is_coordinate(name) == (pass == 1)) order.push_back(v);
+    }
+  for (int v : order) {
+    nc_type type;
+    int nd = 0, natts = 0, dims[NC_MAX_VAR_DIMS], id = -1;
+    ASSERT_EQ(nc_inq_var(in, v, name, &type, &nd, dims, &natts), NC_NOERR);
+    ASSERT_EQ(nc_def_var(out, name, type, nd, dims, &id), NC_NOERR);
+    char att[NC_MAX_NAME + 1];
+    for (int a = 0; a < natts; ++a) {
+      ASSERT_EQ(nc_inq_attname(in, v, a, att), NC_NOERR);
+      ASSERT_EQ(nc_copy_att(in, v, att, out, id), NC_NOERR);
+    }
+  }
+  ASSERT_EQ(nc_enddef(out), NC_NOERR);
+  for (int v : order) {
+    nc_type type;
+    int nd = 0, natts = 0, dims[NC_MAX_VAR_DIMS], id = -1;
+    ASSERT_EQ(nc_inq_var(in, v, name, &type, &nd, dims, &natts), NC_NOERR);
+    if (is_coordinate(name)) continue;
+    std::size_t count = 1, type_size = 0;
+    for (int d = 0; d < nd; ++d) {
+      std::size_t len = 0;
+      ASSERT_EQ(nc_inq_dimlen(in, dims[d], &len), NC_NOERR);
+      count *= len;
+    }
+    if (count == 0) continue;
+    ASSERT_EQ(nc_inq_type(in, type, nullptr, &type_size), NC_NOERR);
+    std::vector<char> buffer(count * type_size);
+    ASSERT_EQ(nc_get_var(in, v, buffer.data()), NC_NOERR);
+    ASSERT_EQ(nc_inq_varid(out, name, &id), NC_NOERR);
+    ASSERT_EQ(nc_put_var(out, id, buffer.data()), NC_NOERR);
+  }
+  ASSERT_EQ(nc_close(in), NC_NOERR);
+  ASSERT_EQ(nc_close(out), NC_NOERR);
+  std::filesystem::resize_file(dst, keep);
 }
 
-// Reference: a valid netCDF header whose dimensions are far larger than the file: the reader used to allocate
-// the declared node count (here 2^30 nodes: 24 GB of coordinates) before reading. A classic file stores
-// every node, so the count is now checked against the file size first.
+// Reference: a 4 kB file (valid netCDF header, coordinates cut off) declaring 4194304 nodes: the reader used
+// to allocate the declared coordinates before reading them (with 2^27 nodes: 6.3 GB and 24 s, then a
+// misleading "degenerate element" message). A netCDF classic file stores every node, so the count is now
+// checked against the file size first.
 TEST(ExodusMeshIo, HeaderCountsLargerThanTheFileAreAnInputError) {
   write_exodus_mesh(tri3_mesh(), "exodus_mesh_io_big_src.exo");
-  std::string bytes = read_bytes("exodus_mesh_io_big_src.exo");
-  patch_dimension(bytes, "num_nodes", 1u << 30);
-  write_bytes("exodus_mesh_io_big_nodes.exo", bytes);
+  copy_with_missing_coordinates("exodus_mesh_io_big_src.exo", "exodus_mesh_io_big_nodes.exo", 4194304, 4096);
   const std::string msg = input_error([] { read_exodus_mesh("exodus_mesh_io_big_nodes.exo"); });
-  EXPECT_NE(msg.find("exodus_mesh_io_big_nodes.exo: the file declares 1073741824 nodes, more than its"),
+  EXPECT_NE(msg.find("exodus_mesh_io_big_nodes.exo: the file declares 4194304 nodes, more than its 4096 bytes can "
+                     "hold (truncated or corrupt file)"),
+            std::string::npos)
+      << msg;
+}
+
+/// Writes tri3_mesh() to `path`, then edits it with the netCDF API in define mode (`edit(ncid)`).
+template <class Edit>
+void write_and_edit(const std::string& path, Edit edit) {
+  write_exodus_mesh(tri3_mesh(), path);
+  int nc = -1;
+  ASSERT_EQ(nc_open(path.c_str(), NC_WRITE, &nc), NC_NOERR);
+  ASSERT_EQ(nc_redef(nc), NC_NOERR);
+  edit(nc);
+  ASSERT_EQ(nc_close(nc), NC_NOERR);
+}
+
+// Reference: fuzz_exodus found that libexodusII reads whole variables (coordinates, connectivity, ids, set
+// entries) into buffers sized by the Exodus dimensions: a variable larger than its dimensions overflowed the
+// heap (valgrind: invalid writes). Each variable is replaced by one over the 81-long dimension len_line.
+TEST(ExodusMeshIo, VariableLargerThanItsDimensionsIsAnInputError) {
+  for (const std::string var : {"coordx", "connect1", "eb_prop1", "node_ns1", "elem_ss1", "elem_els1"}) {
+    const std::string path = "exodus_mesh_io_wide_" + var + ".exo";
+    write_and_edit(path, [&](int nc) {
+      int id = -1, len_line = -1;
+      ASSERT_EQ(nc_inq_varid(nc, var.c_str(), &id), NC_NOERR) << var;
+      ASSERT_EQ(nc_rename_var(nc, id, (var + "_old").c_str()), NC_NOERR);
+      ASSERT_EQ(nc_inq_dimid(nc, "len_line", &len_line), NC_NOERR);
+      ASSERT_EQ(nc_def_var(nc, var.c_str(), NC_INT, 1, &len_line, &id), NC_NOERR);
+    });
+    const std::string msg = input_error([&] { read_exodus_mesh(path); });
+    EXPECT_NE(msg.find(path + ": corrupt Exodus file: variable '" + var + "' has 81 values"), std::string::npos)
+        << msg;
+  }
+}
+
+// Reference: fuzz_exodus: ex_open reads global attributes such as the word size into one number; with more
+// values it smashed the stack. The element type of a block is read into a 33-character buffer (ASan:
+// stack-buffer-overflow with a 5000-character type).
+TEST(ExodusMeshIo, OversizedAttributesAreAnInputError) {
+  write_and_edit("exodus_mesh_io_multi_ws.exo", [](int nc) {
+    const std::vector<int> values(1000, 8);
+    ASSERT_EQ(nc_put_att_int(nc, NC_GLOBAL, "floating_point_word_size", NC_INT, values.size(), values.data()),
+              NC_NOERR);
+  });
+  std::string msg = input_error([] { read_exodus_mesh("exodus_mesh_io_multi_ws.exo"); });
+  EXPECT_NE(msg.find("exodus_mesh_io_multi_ws.exo: corrupt Exodus file: global attribute 'floating_point_word_size' "
+                     "has 1000 values instead of one"),
+            std::string::npos)
+      << msg;
+  write_and_edit("exodus_mesh_io_long_type.exo", [](int nc) {
+    int id = -1;
+    ASSERT_EQ(nc_inq_varid(nc, "connect1", &id), NC_NOERR);
+    const std::string type = "TRISHELL3" + std::string(5000, 'X');
+    ASSERT_EQ(nc_put_att_text(nc, id, "elem_type", type.size(), type.c_str()), NC_NOERR);
+  });
+  msg = input_error([] { read_exodus_mesh("exodus_mesh_io_long_type.exo"); });
+  EXPECT_NE(msg.find("exodus_mesh_io_long_type.exo: corrupt Exodus file: the element type of variable 'connect1' is "
+                     "5009 characters long (at most 32)"),
             std::string::npos)
       << msg;
 }

@@ -1,11 +1,16 @@
 #include "shellfrac/meshio/exodus_mesh_io.hpp"
 
+#include <netcdf.h>
+
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <new>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -225,6 +230,99 @@ bool check_netcdf_classic_header(const std::string& path, std::uintmax_t size) {
   return true;
 }
 
+/// An open netCDF id, closed on destruction.
+struct NetcdfFile {
+  int id = -1;
+  ~NetcdfFile() {
+    if (id >= 0) nc_close(id);
+  }
+};
+
+/// Checks the parts of the file's netCDF structure that libexodusII (6.02) trusts when it reads into buffers
+/// sized from other parts, before any Exodus call: fuzz_exodus showed each of these to be a buffer overflow
+/// in the library (heap or stack; crashes or silent memory corruption):
+///  * variables it reads whole (nc_get_var) into buffers sized by the Exodus dimensions: coordinates,
+///    connectivity, id and status arrays, set entries; each must have exactly the size of its dimensions;
+///  * global attributes it reads into a single number (version, word size, ...): exactly one value;
+///  * the element type attribute of a block, read into a 33-character buffer: at most 32 characters.
+/// Files that netCDF cannot open are left to ex_open (which reports them).
+void check_exodus_structure(const std::string& path) {
+  NetcdfFile nc;
+  if (nc_open(path.c_str(), NC_NOWRITE, &nc.id) != NC_NOERR) {
+    nc.id = -1;
+    return;
+  }
+  for (const char* att : {"api_version", "api version", "version", "floating_point_word_size",
+                          "floating point word size", "file_size", "int64_status", "maximum_name_length"}) {
+    std::size_t len = 0;
+    if (nc_inq_attlen(nc.id, NC_GLOBAL, att, &len) == NC_NOERR)
+      SHELLFRAC_INPUT_REQUIRE(len == 1, path << ": corrupt Exodus file: global attribute '" << att << "' has " << len
+                                             << " values instead of one");
+  }
+  // Length of a dimension by name (0 if absent: Exodus then has no data of that kind).
+  auto dim_length = [&](const std::string& name) -> std::uint64_t {
+    int dim = -1;
+    std::size_t len = 0;
+    if (nc_inq_dimid(nc.id, name.c_str(), &dim) != NC_NOERR || nc_inq_dimlen(nc.id, dim, &len) != NC_NOERR) return 0;
+    return len;
+  };
+  // a * b, saturated (dimension lengths come from the file).
+  auto times = [](std::uint64_t a, std::uint64_t b) {
+    return a == 0 || b <= std::numeric_limits<std::uint64_t>::max() / a ? a * b
+                                                                        : std::numeric_limits<std::uint64_t>::max();
+  };
+  // Expected number of values of a variable that Exodus reads whole; nullopt if it is not one of those.
+  auto expected_size = [&](const std::string& var) -> std::optional<std::uint64_t> {
+    std::string k;
+    auto numbered = [&](const char* prefix) {
+      const std::size_t n = std::strlen(prefix);
+      if (var.size() <= n || var.compare(0, n, prefix) != 0) return false;
+      k = var.substr(n);
+      return std::all_of(k.begin(), k.end(), [](char c) { return c >= '0' && c <= '9'; });
+    };
+    if (var == "coordx" || var == "coordy" || var == "coordz") return dim_length("num_nodes");
+    if (var == "coord") return times(dim_length("num_dim"), dim_length("num_nodes"));
+    if (var == "eb_status" || numbered("eb_prop")) return dim_length("num_el_blk");
+    if (var == "ns_status" || numbered("ns_prop")) return dim_length("num_node_sets");
+    if (var == "ss_status" || numbered("ss_prop")) return dim_length("num_side_sets");
+    if (var == "els_status" || numbered("els_prop")) return dim_length("num_elem_sets");
+    if (numbered("connect")) return times(dim_length("num_el_in_blk" + k), dim_length("num_nod_per_el" + k));
+    if (numbered("node_ns")) return dim_length("num_nod_ns" + k);
+    if (numbered("elem_ss") || numbered("side_ss")) return dim_length("num_side_ss" + k);
+    if (numbered("elem_els")) return dim_length("num_ele_els" + k);
+    return std::nullopt;
+  };
+  int num_vars = 0;
+  SHELLFRAC_INPUT_REQUIRE(nc_inq_nvars(nc.id, &num_vars) == NC_NOERR, path << ": cannot read the netCDF variables");
+  for (int v = 0; v < num_vars; ++v) {
+    char name_buf[NC_MAX_NAME + 1] = {};
+    int ndims = 0;
+    if (nc_inq_varname(nc.id, v, name_buf) != NC_NOERR || nc_inq_varndims(nc.id, v, &ndims) != NC_NOERR) continue;
+    const std::string name = name_buf;
+    const std::optional<std::uint64_t> expected = expected_size(name);
+    if (expected) {
+      std::vector<int> dims(static_cast<std::size_t>(std::max(ndims, 0)));
+      SHELLFRAC_INPUT_REQUIRE(nc_inq_vardimid(nc.id, v, dims.data()) == NC_NOERR,
+                              path << ": cannot read the dimensions of variable '" << name << "'");
+      std::uint64_t size = 1;
+      for (int d : dims) {
+        std::size_t len = 0;
+        SHELLFRAC_INPUT_REQUIRE(nc_inq_dimlen(nc.id, d, &len) == NC_NOERR,
+                                path << ": cannot read the dimensions of variable '" << name << "'");
+        size = times(size, len);
+      }
+      SHELLFRAC_INPUT_REQUIRE(size == *expected, path << ": corrupt Exodus file: variable '" << name << "' has "
+                                                      << size << " values, but its Exodus dimensions give "
+                                                      << *expected);
+    }
+    std::size_t len = 0;
+    if (name.rfind("connect", 0) == 0 && nc_inq_attlen(nc.id, v, "elem_type", &len) == NC_NOERR)
+      SHELLFRAC_INPUT_REQUIRE(len <= MAX_STR_LENGTH, path << ": corrupt Exodus file: the element type of variable '"
+                                                          << name << "' is " << len << " characters long (at most "
+                                                          << MAX_STR_LENGTH << ")");
+  }
+}
+
 mesh::SerialMesh read_exodus_impl(const std::string& path) {
   std::error_code ec;
   SHELLFRAC_INPUT_REQUIRE(std::filesystem::is_regular_file(path, ec), path << ": Exodus file not found");
@@ -232,6 +330,7 @@ mesh::SerialMesh read_exodus_impl(const std::string& path) {
   SHELLFRAC_INPUT_REQUIRE(!ec, path << ": cannot read the file size (" << ec.message() << ")");
   // Upper bound for counts read from the header (0 = none: netCDF-4 files may be compressed).
   const std::uint64_t stored_bytes = check_netcdf_classic_header(path, file_size) ? file_size : 0;
+  check_exodus_structure(path);
   exo::File file = exo::open_read(path);
   SHELLFRAC_INPUT_REQUIRE(file.is_open(), path << ": cannot open as an Exodus II file (" << exo::last_error() << ")");
   const int id = file.id();
