@@ -128,6 +128,7 @@ TEST(Parameters, NumbersMustBeWholeNumbersOfTheirType) {
       {"double", "1e400", "the value '1e400' is not a number"},
       {"int", "10.7", "(type int): the value '10.7' is not an integer in [-2147483648, 2147483647]"},
       {"int", "99999999999999", "the value '99999999999999' is not an integer"},
+      {"int", "+-5", "the value '+-5' is not an integer"},
       {"Array(double)", "{0.0, x, 1.0}", "(type Array(double)): the element 'x' of '{0.0, x, 1.0}' is not a number"},
       {"Array(int)", "{1, 2.5}", "the element '2.5' of '{1, 2.5}' is not an integer"},
   };

@@ -261,7 +261,7 @@ TEST(ExodusMeshIo, NetcdfHeaderWithHugeDimensionCountIsAnInputError) {
                         be32(1) + std::string("x\0\0\0", 4) + be32(0x7fffffff) + std::string(64, '\0'));
   const std::string msg = input_error([&] { read_exodus_mesh(path); });
   EXPECT_NE(msg.find(path), std::string::npos) << msg;
-  EXPECT_NE(msg.find("corrupt netCDF header: variable dimension count 2147483647"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("corrupt or truncated netCDF header: variable dimension count 2147483647"), std::string::npos) << msg;
 }
 
 // Reference: same check for the other lists of the header: a truncated header and an unknown attribute type.
@@ -281,11 +281,12 @@ TEST(ExodusMeshIo, NetcdfHeaderTruncatedOrBadTypeIsAnInputError) {
       << msg;
 }
 
-/// Copies the netCDF file `src` to `dst` (64-bit offset format) with the dimension num_nodes set to `nodes`,
-/// the coordinate variables defined last and never written, then cuts the file to `keep` bytes: a small file
-/// whose header is valid for netCDF but declares far more nodes than it stores.
+/// Copies the netCDF file `src` to `dst` (64-bit offset format) with the dimension num_nodes set to `nodes`
+/// and the coordinate variables either defined last and never written (`define_coordinates`) or left out;
+/// then cuts the file to `keep` bytes (0: no cut). Either way a small file whose header is valid for netCDF
+/// but declares far more nodes than it stores.
 void copy_with_missing_coordinates(const std::string& src, const std::string& dst, std::size_t nodes,
-                                   std::uintmax_t keep) {
+                                   bool define_coordinates, std::uintmax_t keep) {
   int in = -1, out = -1, old_fill = 0, ndims = 0, nvars = 0, ngatts = 0, unlimited = -1;
   ASSERT_EQ(nc_open(src.c_str(), NC_NOWRITE, &in), NC_NOERR);
   ASSERT_EQ(nc_create(dst.c_str(), NC_CLOBBER | NC_64BIT_OFFSET, &out), NC_NOERR);
@@ -309,7 +310,7 @@ void copy_with_missing_coordinates(const std::string& src, const std::string& ds
   for (int pass = 0; pass < 2; ++pass)
     for (int v = 0; v < nvars; ++v) {
       ASSERT_EQ(nc_inq_varname(in, v, name), NC_NOERR);
-      if (is_coordinate(name) == (pass == 1)) order.push_back(v);
+      if (is_coordinate(name) == (pass == 1) && (define_coordinates || !is_coordinate(name))) order.push_back(v);
     }
   for (int v : order) {
     nc_type type;
@@ -343,21 +344,28 @@ void copy_with_missing_coordinates(const std::string& src, const std::string& ds
   }
   ASSERT_EQ(nc_close(in), NC_NOERR);
   ASSERT_EQ(nc_close(out), NC_NOERR);
-  std::filesystem::resize_file(dst, keep);
+  if (keep > 0) std::filesystem::resize_file(dst, keep);
 }
 
 // Reference: a 4 kB file (valid netCDF header, coordinates cut off) declaring 4194304 nodes: the reader used
 // to allocate the declared coordinates before reading them (with 2^27 nodes: 6.3 GB and 24 s, then a
-// misleading "degenerate element" message). A netCDF classic file stores every node, so the count is now
-// checked against the file size first.
+// misleading "degenerate element" message, since netCDF reads zeros past the end of the file). Now: the data
+// of every variable must lie in the file; and the declared counts must fit in the file even where the
+// variables are missing altogether.
 TEST(ExodusMeshIo, HeaderCountsLargerThanTheFileAreAnInputError) {
   write_exodus_mesh(tri3_mesh(), "exodus_mesh_io_big_src.exo");
-  copy_with_missing_coordinates("exodus_mesh_io_big_src.exo", "exodus_mesh_io_big_nodes.exo", 4194304, 4096);
-  const std::string msg = input_error([] { read_exodus_mesh("exodus_mesh_io_big_nodes.exo"); });
-  EXPECT_NE(msg.find("exodus_mesh_io_big_nodes.exo: the file declares 4194304 nodes, more than its 4096 bytes can "
-                     "hold (truncated or corrupt file)"),
+  copy_with_missing_coordinates("exodus_mesh_io_big_src.exo", "exodus_mesh_io_big_nodes.exo", 4194304, true, 4096);
+  std::string msg = input_error([] { read_exodus_mesh("exodus_mesh_io_big_nodes.exo"); });
+  EXPECT_NE(msg.find("exodus_mesh_io_big_nodes.exo: truncated file: the data of variable 'coordx' end at byte "),
             std::string::npos)
       << msg;
+  EXPECT_NE(msg.find(", but the file has 4096 bytes"), std::string::npos) << msg;
+  copy_with_missing_coordinates("exodus_mesh_io_big_src.exo", "exodus_mesh_io_no_coords.exo", 4194304, false, 0);
+  msg = input_error([] { read_exodus_mesh("exodus_mesh_io_no_coords.exo"); });
+  EXPECT_NE(msg.find("exodus_mesh_io_no_coords.exo: the file declares 4194304 nodes, more than its "),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find(" bytes can hold (truncated or corrupt file)"), std::string::npos) << msg;
 }
 
 /// Writes tri3_mesh() to `path`, then edits it with the netCDF API in define mode (`edit(ncid)`).

@@ -127,7 +127,7 @@ std::string teuchos_message(const std::string& what) {
 bool is_integer(std::string_view text, long long lo, long long hi) {
   while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
   while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
-  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  if (text.size() > 1 && text.front() == '+' && std::isdigit(static_cast<unsigned char>(text[1]))) text.remove_prefix(1);
   long long v = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
   return !text.empty() && ec == std::errc() && end == text.data() + text.size() && v >= lo && v <= hi;
@@ -147,9 +147,10 @@ bool is_real(const std::string& text) {
   return *end == '\0' && !(errno == ERANGE && std::isinf(v));
 }
 
-/// Teuchos reads numbers with operator>> and keeps whatever prefix it could read: "0.01mm" is 0.01,
-/// "zero point three" is 0, "10.7" as an int is 10, and "{0, x, 1}" is {0, 0, 1}, all without an error. This
-/// walk of the XML checks that every numeric value (and array element) is a whole number of its type.
+/// Teuchos converts numbers without checking that the whole text was used, keeping whatever prefix it could
+/// read: "0.01mm" is 0.01, "zero point three" is 0, "10.7" as an int is 10, "99999999999999" as an int is
+/// 276447231, and "{0, x, 1}" is {0, 0, 1}, all without an error. This walk of the XML checks that every
+/// numeric value (and array element) is a whole number of its type.
 void check_numbers(const Teuchos::XMLObject& xml, const std::string& file, const std::string& path) {
   for (int i = 0; i < xml.numChildren(); ++i) {
     const Teuchos::XMLObject& child = xml.getChild(i);

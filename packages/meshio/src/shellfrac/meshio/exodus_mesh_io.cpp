@@ -130,6 +130,17 @@ class NetcdfHeader {
     for (int i = 0; i < n; ++i) v = (v << 8) | b[i];
     return v;
   }
+  /// Reads n bytes (which must be in the file) as a string.
+  std::string text(std::uint64_t n, const char* what) {
+    SHELLFRAC_INPUT_REQUIRE(n <= remaining(), path_ << ": truncated netCDF header at byte " << pos_ << " (" << what
+                                                    << " of " << n << " bytes)");
+    std::string s(static_cast<std::size_t>(n), '\0');
+    in_.read(s.data(), static_cast<std::streamsize>(n));
+    SHELLFRAC_INPUT_REQUIRE(in_.gcount() == static_cast<std::streamsize>(n),
+                            path_ << ": cannot read the netCDF header at byte " << pos_);
+    pos_ += n;
+    return s;
+  }
   /// Skips n bytes (which must be in the file).
   void skip(std::uint64_t n, const char* what) {
     SHELLFRAC_INPUT_REQUIRE(n <= remaining(), path_ << ": truncated netCDF header at byte " << pos_ << " (" << what
@@ -141,7 +152,7 @@ class NetcdfHeader {
   std::uint64_t count(int n, std::uint64_t min_bytes, const char* what) {
     const std::uint64_t c = get(n, what);
     SHELLFRAC_INPUT_REQUIRE(c <= remaining() / min_bytes,
-                            path_ << ": corrupt netCDF header: " << what << " " << c << " at byte " << pos_ - n
+                            path_ << ": corrupt or truncated netCDF header: " << what << " " << c << " at byte " << pos_ - n
                                   << " is more than the " << size_ << "-byte file can hold");
     return c;
   }
@@ -155,9 +166,11 @@ class NetcdfHeader {
 
 /// Checks the header of a netCDF classic file (CDF-1, CDF-2 or CDF-5; "NetCDF Classic Format Specification")
 /// before the netCDF library parses it: every count must fit in the file, every type and dimension id must be
-/// valid. libnetcdf allocates what a header declares before checking it against the file: a 3 kB file
-/// declaring a variable with 2^31 dimensions made it allocate and touch 6.5 GB. Returns false when the file
-/// is not a netCDF classic file (netCDF-4 / HDF5 files are left to the library).
+/// valid. libnetcdf allocates what a header declares before checking it against the file: a 2.6 kB file
+/// declaring a variable with 822083584 dimensions made it allocate and touch 6.5 GB. Then the data of every
+/// fixed-size variable must lie inside the file (the library writes files to their full size; reading past
+/// the end of a truncated file gives zeros, hence misleading messages). Returns false when the file is not a
+/// netCDF classic file (netCDF-4 / HDF5 files are left to the library).
 bool check_netcdf_classic_header(const std::string& path, std::uintmax_t size) {
   NetcdfHeader h(path, size);
   if (size < 4) return false;
@@ -183,7 +196,9 @@ bool check_netcdf_classic_header(const std::string& path, std::uintmax_t size) {
   };
   auto name = [&](const char* what) {
     const std::uint64_t n = h.count(nn, 1, what);
-    h.skip((n + 3) / 4 * 4, what);
+    std::string text = h.text(n, what);
+    h.skip((n + 3) / 4 * 4 - n, what);
+    return text;
   };
   auto type_size = [&](std::uint64_t type) -> std::uint64_t {
     switch (type) {
@@ -207,25 +222,39 @@ bool check_netcdf_classic_header(const std::string& path, std::uintmax_t size) {
     }
   };
   const std::uint64_t num_dims = list_count(tag_dimension, static_cast<std::uint64_t>(2 * nn), "dimension list");
-  for (std::uint64_t i = 0; i < num_dims; ++i) {
+  std::vector<std::uint64_t> dim_length(static_cast<std::size_t>(num_dims));
+  for (auto& len : dim_length) {
     name("dimension name length");
-    h.get(nn, "dimension length");
+    len = h.get(nn, "dimension length");  // 0: the record (unlimited) dimension
   }
   attributes("global attribute list");
   const int offset_size = version == 1 ? 4 : 8;
   const std::uint64_t num_vars =
       list_count(tag_variable, static_cast<std::uint64_t>(3 * nn + 4 + 4 + nn + offset_size), "variable list");
+  constexpr std::uint64_t saturated = std::numeric_limits<std::uint64_t>::max();
   for (std::uint64_t i = 0; i < num_vars; ++i) {
-    name("variable name length");
+    const std::string var = name("variable name length");
     const std::uint64_t rank = h.count(nn, static_cast<std::uint64_t>(nn), "variable dimension count");
-    for (std::uint64_t k = 0; k < rank; ++k)
-      SHELLFRAC_INPUT_REQUIRE(h.get(nn, "dimension id") < num_dims,
-                              path << ": corrupt netCDF header: a variable refers to dimension id beyond the "
-                                   << num_dims << " dimensions");
+    bool record = false;
+    std::uint64_t values = 1;
+    for (std::uint64_t k = 0; k < rank; ++k) {
+      const std::uint64_t dim = h.get(nn, "dimension id");
+      SHELLFRAC_INPUT_REQUIRE(dim < num_dims, path << ": corrupt netCDF header: variable '" << var
+                                                   << "' refers to dimension id " << dim << " beyond the " << num_dims
+                                                   << " dimensions");
+      const std::uint64_t len = dim_length[static_cast<std::size_t>(dim)];
+      if (k == 0 && len == 0) record = true;
+      values = len == 0 || values <= saturated / len ? values * len : saturated;
+    }
     attributes("variable attribute list");
-    type_size(h.get(4, "variable type"));
+    const std::uint64_t bytes_each = type_size(h.get(4, "variable type"));
     h.get(nn, "variable size");
-    h.get(offset_size, "variable offset");
+    const std::uint64_t begin = h.get(offset_size, "variable offset");
+    if (record || values == 0) continue;  // record variables grow with the file; empty ones store nothing
+    const std::uint64_t bytes = values <= saturated / bytes_each ? values * bytes_each : saturated;
+    const std::uint64_t end = begin <= saturated - bytes ? begin + bytes : saturated;
+    SHELLFRAC_INPUT_REQUIRE(end <= size, path << ": truncated file: the data of variable '" << var << "' end at byte "
+                                              << end << ", but the file has " << size << " bytes");
   }
   return true;
 }
@@ -239,8 +268,9 @@ struct NetcdfFile {
 };
 
 /// Checks the parts of the file's netCDF structure that libexodusII (6.02) trusts when it reads into buffers
-/// sized from other parts, before any Exodus call: fuzz_exodus showed each of these to be a buffer overflow
-/// in the library (heap or stack; crashes or silent memory corruption):
+/// sized from other parts, before any Exodus call. Each of these was a buffer overflow in the library (heap or
+/// stack; crashes or silent memory corruption), found with fuzz_exodus, valgrind and ASan
+/// (docs/hostile_input.md):
 ///  * variables it reads whole (nc_get_var) into buffers sized by the Exodus dimensions: coordinates,
 ///    connectivity, id and status arrays, set entries; each must have exactly the size of its dimensions;
 ///  * global attributes it reads into a single number (version, word size, ...): exactly one value;

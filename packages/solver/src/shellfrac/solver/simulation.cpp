@@ -228,7 +228,8 @@ Simulation::Simulation(const std::string& deck_file, MPI_Comm comm, const std::s
   for (const auto& b : m.blocks)
     SHELLFRAC_INPUT_REQUIRE(deck_.blocks.count(b.name), deck_.file << ": mesh block '" << b.name << "' (from " << m.source
                                                                    << ") has no entry in the Blocks sublist");
-  for (const auto& [name, unused] : deck_.blocks) {
+  for (const auto& section : deck_.blocks) {
+    const std::string& name = section.first;  // not a structured binding: lambdas capture those only from C++20
     const bool found = std::any_of(m.blocks.begin(), m.blocks.end(), [&](const auto& b) { return b.name == name; });
     std::ostringstream os;
     for (const auto& b : m.blocks) os << " '" << b.name << "'";
