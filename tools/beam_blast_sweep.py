@@ -22,7 +22,7 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 L, W, H, RHO, SIGC, E, NU = 0.2, 0.025, 6.53e-3, 2693.0, 375e6, 68.9e9, 0.343
 
-COLUMNS = ["V0", "mesh", "alpha1", "t_act_us", "w_act_mm", "where_first", "dist_first_mm", "t_last_act_us",
+COLUMNS = ["V0", "mesh", "alpha1", "shear_yield", "fixture", "t_act_us", "w_act_mm", "where_first", "dist_first_mm", "t_last_act_us",
            "w_last_act_mm", "n_act_events", "n_sep", "n_frag", "where_end", "dist_end_mm", "w_max_mm",
            "v_centre_end", "t_frame_us", "eps_p_frame", "W_p_J", "rel_energy_err", "t_end_us", "rc"]
 
@@ -34,7 +34,7 @@ DECK = """<ParameterList name="shellfrac">
   <ParameterList name="Blocks"><ParameterList name="beam">
     <Parameter name="Thickness" type="double" value="{h}"/>
     <Parameter name="Material" type="string" value="6061-T6"/>
-  </ParameterList></ParameterList>
+  </ParameterList>{clamp_block}</ParameterList>
   <ParameterList name="Materials"><ParameterList name="6061-T6">
     <Parameter name="Model" type="string" value="Resultant Plasticity"/>
     <Parameter name="Density" type="double" value="{rho}"/>
@@ -42,6 +42,7 @@ DECK = """<ParameterList name="shellfrac">
     <Parameter name="Poisson's Ratio" type="double" value="{nu}"/>
     <Parameter name="Yield Stress" type="double" value="275e6"/>
     <Parameter name="Hardening Modulus" type="double" value="1.33e9"/>
+    <Parameter name="Shear Yield" type="bool" value="{shear_yield}"/>
     <Parameter name="Cohesive Strength" type="double" value="{sigc}"/>
     <Parameter name="Fracture Energy" type="double" value="0"/>
   </ParameterList></ParameterList>
@@ -53,14 +54,10 @@ DECK = """<ParameterList name="shellfrac">
     <Parameter name="History Interval" type="int" value="1"/>
     <Parameter name="Output Interval" type="double" value="{dtout}"/>
   </ParameterList>
-  <ParameterList name="Boundary Conditions">
-    <ParameterList name="left"><Parameter name="Type" type="string" value="Clamped"/>
-      <Parameter name="Node Set" type="string" value="x_min"/></ParameterList>
-    <ParameterList name="right"><Parameter name="Type" type="string" value="Clamped"/>
-      <Parameter name="Node Set" type="string" value="x_max"/></ParameterList>
+  <ParameterList name="Boundary Conditions">{bcs}
   </ParameterList>
   <ParameterList name="Initial Conditions"><ParameterList name="impulse">
-    <Parameter name="Elements" type="string" value="all"/>
+    <Parameter name="Elements" type="string" value="beam"/>
     <Parameter name="Velocity" type="Array(double)" value="{{0.0, 0.0, {vz}}}"/>
   </ParameterList></ParameterList>
   <ParameterList name="Output">
@@ -71,24 +68,47 @@ DECK = """<ParameterList name="shellfrac">
 """
 
 
-def write_mesh(path, nx, ny):
-    """Gmsh 2.2: nx x ny cells, chessboard diagonals, curves x_min/x_max, point set centre (x = L/2)."""
-    tag = lambda i, j: j * (nx + 1) + i + 1
-    nodes = [f"{tag(i, j)} {i * L / nx:.16g} {j * W / ny:.16g} 0" for j in range(ny + 1) for i in range(nx + 1)]
-    els = []
+def write_mesh(path, nx, ny, nc=0):
+    """Gmsh 2.2: nx x ny cells over the span, chessboard diagonals, curves x_min/x_max (x = 0, L), point set
+    centre (x = L/2). nc > 0: nc more columns of cells on each side (x < 0 and x > L) in block 'clamps' with the
+    node set 'clamp_nodes' (every node at x <= 0 or x >= L): the fixture, held through its elements only, so
+    that the edges at x = 0 and x = L are interior edges that can break."""
+    dx, nt = L / nx, nx + 2 * nc
+    tag = lambda i, j: j * (nt + 1) + i + 1          # i = 0 .. nt (x = (i - nc) dx)
+    nodes = [f"{tag(i, j)} {(i - nc) * dx:.16g} {j * W / ny:.16g} 0" for j in range(ny + 1) for i in range(nt + 1)]
+    lines = []
     for j in range(ny):
-        for i in range(nx):
+        for i in range(nt):
             a, b, c, d = tag(i, j), tag(i + 1, j), tag(i + 1, j + 1), tag(i, j + 1)
-            els += [[a, b, c], [a, c, d]] if (i + j) % 2 == 0 else [[a, b, d], [b, c, d]]
-    lines = [f"2 2 1 1 {' '.join(map(str, t))}" for t in els]
-    lines += [f"1 2 {g} {g} {tag(i, j)} {tag(i, j + 1)}" for g, i in ((2, 0), (3, nx)) for j in range(ny)]
-    lines += [f"15 2 4 4 {tag(nx // 2, j)}" for j in range(ny + 1)]
+            g = 1 if nc <= i < nc + nx else 5
+            for t in ([[a, b, c], [a, c, d]] if (i - nc + j) % 2 == 0 else [[a, b, d], [b, c, d]]):
+                lines.append(f"2 2 {g} {g} {' '.join(map(str, t))}")
+    lines += [f"1 2 {g} {g} {tag(i, j)} {tag(i, j + 1)}" for g, i in ((2, nc), (3, nc + nx)) for j in range(ny)]
+    lines += [f"15 2 4 4 {tag(nc + nx // 2, j)}" for j in range(ny + 1)]
+    if nc:
+        lines += [f"15 2 6 6 {tag(i, j)}" for j in range(ny + 1) for i in range(nt + 1) if i <= nc or i >= nc + nx]
+    names = ['2 1 "beam"', '1 2 "x_min"', '1 3 "x_max"', '0 4 "centre"'] + (['2 5 "clamps"', '0 6 "clamp_nodes"'] if nc else [])
     with open(path, "w") as f:
-        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n4\n2 1 \"beam\"\n1 2 \"x_min\"\n"
-                "1 3 \"x_max\"\n0 4 \"centre\"\n$EndPhysicalNames\n")
+        f.write(f"$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n{len(names)}\n" + "\n".join(names)
+                + "\n$EndPhysicalNames\n")
         f.write(f"$Nodes\n{len(nodes)}\n" + "\n".join(nodes) + "\n$EndNodes\n")
         f.write(f"$Elements\n{len(lines)}\n" + "\n".join(f"{k + 1} {s}" for k, s in enumerate(lines))
                 + "\n$EndElements\n")
+
+
+BCS_EDGES = """
+    <ParameterList name="left"><Parameter name="Type" type="string" value="Clamped"/>
+      <Parameter name="Node Set" type="string" value="x_min"/></ParameterList>
+    <ParameterList name="right"><Parameter name="Type" type="string" value="Clamped"/>
+      <Parameter name="Node Set" type="string" value="x_max"/></ParameterList>"""
+BCS_FIXTURE = """
+    <ParameterList name="fixture"><Parameter name="Type" type="string" value="Clamped"/>
+      <Parameter name="Node Set" type="string" value="clamp_nodes"/>
+      <Parameter name="Elements" type="string" value="clamps"/></ParameterList>"""
+CLAMP_BLOCK = """<ParameterList name="clamps">
+    <Parameter name="Thickness" type="double" value="{h}"/>
+    <Parameter name="Material" type="string" value="6061-T6"/>
+  </ParameterList>"""
 
 
 def damage_info(exo, nx):
@@ -113,19 +133,21 @@ def damage_info(exo, nx):
                 eps_p_frame=float(eps[hit[0], e0].max()), where_end=where(dist[e1]), dist_end_mm=dlist(dist[e1]))
 
 
-def run_one(v0, nx, ny, tend, outdir, binary, alpha1, dtout):
-    name = f"v{v0:g}_{nx}x{ny}" + ("" if alpha1 == 1 else f"_a{alpha1:g}")
-    mesh = os.path.join(outdir, f"beam_{nx}x{ny}.msh")
+def run_one(v0, nx, ny, tend, outdir, binary, alpha1, dtout, shear_yield, nc):
+    name = (f"v{v0:g}_{nx}x{ny}" + ("" if alpha1 == 1 else f"_a{alpha1:g}") + ("_sy" if shear_yield else "")
+            + (f"_fix{nc}" if nc else ""))
+    mesh = os.path.join(outdir, f"beam_{nx}x{ny}" + (f"_fix{nc}" if nc else "") + ".msh")
     if not os.path.exists(mesh):
-        write_mesh(mesh, nx, ny)
+        write_mesh(mesh, nx, ny, nc)
     deck = os.path.join(outdir, name + ".xml")
     with open(deck, "w") as f:
         f.write(DECK.format(mesh=os.path.basename(mesh), h=H, rho=RHO, E=E, nu=NU, sigc=SIGC, alpha1=alpha1, tend=tend,
-                            dtout=dtout, vz=-v0, name=name))
+                            dtout=dtout, vz=-v0, name=name, shear_yield="true" if shear_yield else "false",
+                            clamp_block=CLAMP_BLOCK.format(h=H) if nc else "", bcs=BCS_FIXTURE if nc else BCS_EDGES))
     with open(os.path.join(outdir, name + ".log"), "w") as log:
         rc = subprocess.run([binary, deck], cwd=outdir, stdout=log, stderr=subprocess.STDOUT,
                             env=dict(os.environ, OMP_NUM_THREADS="1")).returncode
-    row = dict(V0=v0, mesh=f"{nx}x{ny}", alpha1=alpha1, rc=rc)
+    row = dict(V0=v0, mesh=f"{nx}x{ny}", alpha1=alpha1, shear_yield=int(shear_yield), fixture=nc, rc=rc)
     try:
         hist = np.genfromtxt(os.path.join(outdir, name + "_history.csv"), delimiter=",", names=True)
     except OSError:
@@ -154,6 +176,10 @@ def main():
     p.add_argument("-t", "--end-time", type=float, default=1e-3)
     p.add_argument("-o", "--outdir", default="beam_blast_sweep")
     p.add_argument("--alpha1", type=float, default=1.0, help="Fracture->Alpha 1 (1 = paper)")
+    p.add_argument("--shear-yield", action="store_true",
+                   help="Shear Yield = true: transverse shear in the yield function (math.md §4.1 option (b))")
+    p.add_argument("--fixture", type=int, default=0,
+                   help="columns of cells of clamping fixture on each side (0: clamped end edges, which cannot break)")
     p.add_argument("--output-interval", type=float, default=1e-5, help="Exodus output interval [s]")
     p.add_argument("--binary", default=os.path.join(ROOT, "build/apps/shellfrac/shellfrac"))
     a = p.parse_args()
@@ -168,7 +194,7 @@ def main():
     rows = []
     for v in vs:
         rows.append(run_one(float(v), nx, ny, a.end_time, os.path.abspath(a.outdir), a.binary, a.alpha1,
-                            a.output_interval))
+                            a.output_interval, a.shear_yield, a.fixture))
         print(f"  V0 = {v:g} m/s: rc {rows[-1]['rc']}, t_act {rows[-1].get('t_act_us', '-')} us", file=sys.stderr)
     keys = [k for k in COLUMNS if any(k in r for r in rows)]
     with open(os.path.join(a.outdir, "sweep.csv"), "w", newline="") as f:

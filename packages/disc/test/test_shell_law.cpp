@@ -107,16 +107,16 @@ ShellKinematics flat_unit() {
 struct Law {
   ElasticSection sec;
   ShellReference ref;
-  double eps_p[3], rho_p[3];
+  double eps_p[3], rho_p[3], gam_p[2];
   double energy(const ShellKinematics& k) const {
     double eps[3], gam[2], rho[3];
     compute_strains(k, ref, eps, gam, rho);
-    return elastic_energy(sec, eps, gam, rho, eps_p, rho_p);
+    return elastic_energy(sec, eps, gam, rho, eps_p, gam_p, rho_p);
   }
   void vectors(const ShellKinematics& k, double n[2][3], double m[2][3], double l[3]) const {
     double eps[3], gam[2], rho[3], N[3], Q[2], M[3];
     compute_strains(k, ref, eps, gam, rho);
-    elastic_resultants(sec, eps, gam, rho, eps_p, rho_p, N, Q, M);
+    elastic_resultants(sec, eps, gam, rho, eps_p, gam_p, rho_p, N, Q, M);
     stress_power_vectors(k, N, Q, M, n, m, l);
   }
 };
@@ -212,7 +212,8 @@ TEST(ShellLaw, Objectivity) {
   Rng rng(777);
   for (int trial = 0; trial < 20; ++trial) {
     const ShellKinematics k0 = random_reference(rng);
-    Law law{make_elastic_section(1.0e3, 0.25, 0.4), make_shell_reference(k0), {0.01, -0.02, 0.015}, {0.03, 0.01, -0.02}};
+    Law law{make_elastic_section(1.0e3, 0.25, 0.4), make_shell_reference(k0), {0.01, -0.02, 0.015}, {0.03, 0.01, -0.02},
+            {0.004, -0.006}};
     const ShellKinematics k = random_current(rng, k0);
     double R[3][3];
     rng.random_rotation(R);
@@ -255,7 +256,7 @@ TEST(ShellLaw, StressPowerIsGradientOfEnergy) {
     const ElasticSection& sec = sections[is];
     for (int trial = 0; trial < 20; ++trial) {
       const ShellKinematics k0 = (trial % 4 == 0) ? flat_unit() : random_reference(rng);
-      Law law{sec, make_shell_reference(k0), {0, 0, 0}, {0, 0, 0}};
+      Law law{sec, make_shell_reference(k0), {0, 0, 0}, {0, 0, 0}, {0, 0}};
       if (trial % 2 == 1) {  // plastic strains enter as eps - eps_p, rho - rho_p
         for (int c = 0; c < 3; ++c) law.eps_p[c] = 0.05 * rng(), law.rho_p[c] = 0.1 * rng();
       }

@@ -17,7 +17,8 @@ namespace shellfrac::test {
 
 /// On rank 0 of a run on more than one rank: runs `deck_text` (whose Output Directory is `dir`) serially
 /// (MPI_COMM_SELF) into dir/serial and expects its history and every Exodus nodal and element value except
-/// `rank` to equal those of `par` bitwise. Collective (ends with a barrier).
+/// `rank` to equal those of `par` bitwise, and the same fragment table and crack log if there are any.
+/// Collective (ends with a barrier).
 inline void expect_same_as_serial(const solver::Simulation& par, const std::string& deck_text, const std::string& dir,
                                   const std::string& name) {
   if (parallel::size() > 1 && parallel::rank() == 0) {
@@ -31,6 +32,14 @@ inline void expect_same_as_serial(const solver::Simulation& par, const std::stri
     solver::Simulation ser(dir + "/" + name + "_serial.xml", MPI_COMM_SELF);
     ser.run();
     EXPECT_EQ(slurp(par.history_path()), slurp(ser.history_path())) << "history differs from the serial run";
+    // Fracture runs: the same fragments and the same crack log (broken edges by global id, step and mode shares).
+    for (const auto& [p, s] : {std::pair{par.fragments_path(), ser.fragments_path()},
+                               std::pair{par.cracks_path(), ser.cracks_path()}}) {
+      EXPECT_EQ(std::filesystem::exists(p), std::filesystem::exists(s)) << p;
+      if (std::filesystem::exists(p)) {
+        EXPECT_EQ(slurp(p), slurp(s)) << p << " differs from the serial run";
+      }
+    }
     const auto rp = io::read_results(par.exodus_path()), rs = io::read_results(ser.exodus_path());
     EXPECT_EQ(rp.times, rs.times);
     EXPECT_EQ(rp.nodal, rs.nodal);

@@ -138,6 +138,16 @@ TEST(Fracture, StripWithOneCohesiveEdge) {
   EXPECT_NEAR(f1[column(hf, "com_x")] + f2[column(hf, "com_x")], 2 * L, 1e-9 * L);
   EXPECT_LT(f1[column(hf, "momentum_x")], 0.0);
   EXPECT_NEAR(f1[column(hf, "momentum_x")] + f2[column(hf, "momentum_x")], 0.0, 1e-9 * half * V);
+  // Crack log: one row, the edge at mid-length, activated at t_act (the history records every step) by normal
+  // opening (uniaxial tension across the edge). The other terms of n_eq^2 are not exactly zero: the P1 projections
+  // of the two triangles' resultants carry a little in-plane shear near the wave front (measured share 6e-6).
+  std::vector<std::string> hc;
+  const auto cracks = read_history(sim.cracks_path(), hc);
+  ASSERT_EQ(cracks.size(), 1u);
+  EXPECT_EQ(cracks[0][column(hc, "time")], t_act);
+  EXPECT_NEAR(cracks[0][column(hc, "x")], L, 1e-3 * L);
+  EXPECT_GE(cracks[0][column(hc, "fbar")], 0.0);
+  EXPECT_GT(cracks[0][column(hc, "share_normal")], 1 - 1e-4);
   // No artificial compliance: until the edge activates, the run is the intact strip's, bitwise.
   ASSERT_EQ(hd, hi);
   std::size_t compared = 0;
@@ -175,5 +185,14 @@ TEST(Fracture, SameBreaksOnAnyRankCount) {
   const auto rows = read_history(sim.history_path(), hd);
   EXPECT_GT(rows.back()[column(hd, "num_separated_edges")], 4.0) << "the beam must shear off at its supports";
   EXPECT_GT(rows.back()[column(hd, "num_fragments")], 2.0);
+  // The crack log has a row per activated edge, each with its five shares of n_eq^2 summing to 1.
+  std::vector<std::string> hc;
+  const auto cracks = read_history(sim.cracks_path(), hc);
+  EXPECT_EQ(double(cracks.size()), rows.back()[column(hd, "num_cohesive_edges")]);
+  for (const auto& r : cracks) {
+    double sum = 0;
+    for (std::size_t k = column(hc, "share_normal"); k < hc.size(); ++k) sum += r[k];
+    EXPECT_NEAR(sum, 1.0, 1e-12);
+  }
   expect_same_as_serial(sim, text, dir, "beam");
 }

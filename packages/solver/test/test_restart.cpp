@@ -46,6 +46,7 @@ std::string strip_deck(const std::string& dir, const std::string& end_time) {
                "<Parameter name=\"Model\" type=\"string\" value=\"Resultant Plasticity\"/>"
                "<Parameter name=\"Yield Stress\" type=\"double\" value=\"280e6\"/>"
                "<Parameter name=\"Hardening Modulus\" type=\"double\" value=\"20e9\"/>"
+               "<Parameter name=\"Shear Yield\" type=\"bool\" value=\"true\"/>"  // gam^p is state too
                "<Parameter name=\"Cohesive Strength\" type=\"double\" value=\"375e6\"/>"
                "<Parameter name=\"Fracture Energy\" type=\"double\" value=\"10e3\"/>");
   return text;
@@ -99,6 +100,8 @@ void broken_run(const std::string& dir, MPI_Comm first, MPI_Comm second) {
 void expect_same(const std::string& reference, const std::string& broken, const std::string& what) {
   if (parallel::rank() != 0) return;
   EXPECT_EQ(slurp(reference + "/run_history.csv"), slurp(broken + "/run_history.csv")) << what;
+  EXPECT_EQ(slurp(reference + "/run_cracks.csv"), slurp(broken + "/run_cracks.csv")) << what << " (crack log)";
+  EXPECT_NE(slurp(reference + "/run_cracks.csv").find('\n'), std::string::npos);
   const auto find_results = [](const std::string& dir, const std::string& stem) {
     for (const auto& e : std::filesystem::directory_iterator(dir)) {
       const std::string f = e.path().filename();

@@ -157,5 +157,5 @@ TEST(Run, BadDecksAreRejectedBeforeAnyOutput) {
   std::string elastic_yield = deck(panel_mesh, "shell", out);
   elastic_yield.replace(elastic_yield.find("<Parameter name=\"Density\""), 0,
                         "<Parameter name=\"Yield Stress\" type=\"double\" value=\"44e3\"/>");
-  expect_rejected(dir, elastic_yield, {"gives a yield stress or hardening modulus, which only Model = Resultant Plasticity uses"});
+  expect_rejected(dir, elastic_yield, {"gives a yield stress, hardening modulus or shear yield, which only Model = Resultant Plasticity uses"});
 }

@@ -195,4 +195,22 @@ KOKKOS_INLINE_FUNCTION double equivalent_traction(const CohesiveParams& p, const
   return std::sqrt(nN * nN + nS2 / (p.alpha1 * p.alpha1) + (mN * mN) / (a2h * a2h) + mS2 / (a3h * a3h));
 }
 
+/// The five squared terms of n_eq^2 (equivalent_traction) for the crack log: [0] (n.nu)^2 (normal opening),
+/// [1] (n.tau)^2/alpha1^2 (in-plane sliding along the edge), [2] (|n_S|^2 - (n.tau)^2)/alpha1^2 (transverse,
+/// out-of-plane sliding: shear-off), [3] (m.nu)^2/(alpha2 h)^2, [4] |m_S|^2/(alpha3 h)^2 (director couples).
+/// tau: a unit tangent of the edge orthogonal to nu. Their sum is n_eq^2.
+KOKKOS_INLINE_FUNCTION void equivalent_traction_parts(const CohesiveParams& p, const double n[3], const double m[3],
+                                                      const double nu[3], const double tau[3], double parts[5]) {
+  double nN, nS[3], mN, mS[3];
+  const double nS2 = detail::split_jump(n, nu, nN, nS);
+  const double mS2 = detail::split_jump(m, nu, mN, mS);
+  const double nT = nS[0] * tau[0] + nS[1] * tau[1] + nS[2] * tau[2];
+  const double a1 = p.alpha1 * p.alpha1, a2h = p.alpha2 * p.h, a3h = p.alpha3 * p.h;
+  parts[0] = nN * nN;
+  parts[1] = nT * nT / a1;
+  parts[2] = (nS2 - nT * nT) / a1;
+  parts[3] = mN * mN / (a2h * a2h);
+  parts[4] = mS2 / (a3h * a3h);
+}
+
 }  // namespace shellfrac::materials

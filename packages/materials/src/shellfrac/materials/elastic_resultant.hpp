@@ -3,11 +3,12 @@
 /// Elastic resultant law of the shell (math.md §3.1): St. Venant-Kirchhoff in resultants, Kirchhoff-type
 /// (per unit reference area). Header-only and kernel-safe: no Teuchos, no allocation, plain arrays.
 ///   C0 = [[1, nu, 0], [nu, 1, 0], [0, 0, (1-nu)/2]]
-///   N_v = D_n C0 (eps_v - eps_v^p),  M_v = D_m C0 (rho_v - rho_v^p),  Q = D_s gam
-///   W   = 1/2 N_v.(eps_v - eps_v^p) + 1/2 M_v.(rho_v - rho_v^p) + 1/2 Q.gam
+///   N_v = D_n C0 (eps_v - eps_v^p),  M_v = D_m C0 (rho_v - rho_v^p),  Q = D_s (gam - gam^p)
+///   W   = 1/2 N_v.(eps_v - eps_v^p) + 1/2 M_v.(rho_v - rho_v^p) + 1/2 Q.(gam - gam^p)
 /// Voigt with engineering shear: eps_v = [eps_11, eps_22, 2 eps_12], rho_v likewise; N_v = [N11, N22, N12],
-/// M_v = [M11, M22, M12]. The plastic strains eps^p, rho^p (same Voigt convention) are inputs of the
-/// overloads taking them; the shear stays elastic (math.md §4).
+/// M_v = [M11, M22, M12]. The plastic strains eps^p, gam^p, rho^p (same conventions) are inputs of the
+/// overloads taking them; gam^p is zero unless the transverse shear is in the yield function (math.md §4.1
+/// option (b), resultant_plasticity.hpp).
 #include <Kokkos_Macros.hpp>
 
 namespace shellfrac::materials {
@@ -40,33 +41,34 @@ KOKKOS_INLINE_FUNCTION void apply_c0(double D, double nu, const double x[3], dou
 }
 }  // namespace detail
 
-/// Resultants with plastic strains: N = D_n C0 (eps - eps_p), Q = D_s gam, M = D_m C0 (rho - rho_p).
+/// Resultants with plastic strains: N = D_n C0 (eps - eps_p), Q = D_s (gam - gam_p), M = D_m C0 (rho - rho_p).
 KOKKOS_INLINE_FUNCTION void elastic_resultants(const ElasticSection& s, const double eps[3], const double gam[2],
-                                               const double rho[3], const double eps_p[3], const double rho_p[3],
-                                               double N[3], double Q[2], double M[3]) {
+                                               const double rho[3], const double eps_p[3], const double gam_p[2],
+                                               const double rho_p[3], double N[3], double Q[2], double M[3]) {
   const double ee[3] = {eps[0] - eps_p[0], eps[1] - eps_p[1], eps[2] - eps_p[2]};
   const double re[3] = {rho[0] - rho_p[0], rho[1] - rho_p[1], rho[2] - rho_p[2]};
   detail::apply_c0(s.Dn, s.nu, ee, N);
   detail::apply_c0(s.Dm, s.nu, re, M);
-  Q[0] = s.Ds * gam[0];
-  Q[1] = s.Ds * gam[1];
+  Q[0] = s.Ds * (gam[0] - gam_p[0]);
+  Q[1] = s.Ds * (gam[1] - gam_p[1]);
 }
 
-/// Purely elastic resultants (eps_p = rho_p = 0).
+/// Purely elastic resultants (eps_p = gam_p = rho_p = 0).
 KOKKOS_INLINE_FUNCTION void elastic_resultants(const ElasticSection& s, const double eps[3], const double gam[2],
                                                const double rho[3], double N[3], double Q[2], double M[3]) {
   const double zero[3] = {0.0, 0.0, 0.0};
-  elastic_resultants(s, eps, gam, rho, zero, zero, N, Q, M);
+  elastic_resultants(s, eps, gam, rho, zero, zero, zero, N, Q, M);
 }
 
 /// Stored energy per unit reference area with plastic strains (math.md §3.1).
 KOKKOS_INLINE_FUNCTION double elastic_energy(const ElasticSection& s, const double eps[3], const double gam[2],
-                                             const double rho[3], const double eps_p[3], const double rho_p[3]) {
+                                             const double rho[3], const double eps_p[3], const double gam_p[2],
+                                             const double rho_p[3]) {
   double N[3], Q[2], M[3];
-  elastic_resultants(s, eps, gam, rho, eps_p, rho_p, N, Q, M);
+  elastic_resultants(s, eps, gam, rho, eps_p, gam_p, rho_p, N, Q, M);
   double w = 0.0;
   for (int k = 0; k < 3; ++k) w += N[k] * (eps[k] - eps_p[k]) + M[k] * (rho[k] - rho_p[k]);
-  w += Q[0] * gam[0] + Q[1] * gam[1];
+  w += Q[0] * (gam[0] - gam_p[0]) + Q[1] * (gam[1] - gam_p[1]);
   return 0.5 * w;
 }
 
@@ -74,7 +76,7 @@ KOKKOS_INLINE_FUNCTION double elastic_energy(const ElasticSection& s, const doub
 KOKKOS_INLINE_FUNCTION double elastic_energy(const ElasticSection& s, const double eps[3], const double gam[2],
                                              const double rho[3]) {
   const double zero[3] = {0.0, 0.0, 0.0};
-  return elastic_energy(s, eps, gam, rho, zero, zero);
+  return elastic_energy(s, eps, gam, rho, zero, zero, zero);
 }
 
 }  // namespace shellfrac::materials

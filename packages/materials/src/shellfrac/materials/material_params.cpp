@@ -18,6 +18,10 @@ Teuchos::RCP<const Teuchos::ParameterList> MaterialParams::valid_parameters() {
   pl->set("Hardening Modulus", 0.0, "Resultant Plasticity: linear isotropic hardening modulus H = d sigma_y / d "
                                     "(equivalent plastic strain) [force/length^2]; 0 = perfectly plastic",
           params::non_negative_double());
+  pl->set("Shear Yield", false,
+          "Resultant Plasticity: the transverse shear force Q enters the yield function, sigma_eq^2 += 3 |Q|^2 / h^2, "
+          "so that pure shear yields at |Q| = h sigma_y / sqrt(3) (math.md §4.1 option (b)); false = Q stays elastic. "
+          "Turn it on where shear-off is possible: an elastic Q can reach the cohesive strength of an edge at impact");
   pl->set("Cohesive Strength", 0.0, "sigma_c: strength of the extrinsic cohesive law on the element edges "
                                     "[force/length^2] (paper §3); 0 = this material never breaks",
           params::non_negative_double());
@@ -39,6 +43,7 @@ MaterialParams MaterialParams::from_parameters(const std::string& name, Teuchos:
   m.poissons_ratio = pl.get<double>("Poisson's Ratio");
   m.yield_stress = pl.get<double>("Yield Stress");
   m.hardening_modulus = pl.get<double>("Hardening Modulus");
+  m.shear_in_yield = pl.get<bool>("Shear Yield");
   m.cohesive_strength = pl.get<double>("Cohesive Strength");
   m.fracture_energy = pl.get<double>("Fracture Energy");
   SHELLFRAC_INPUT_REQUIRE(m.cohesive_strength > 0 || m.fracture_energy == 0,
@@ -48,9 +53,9 @@ MaterialParams MaterialParams::from_parameters(const std::string& name, Teuchos:
                             ctx.file << ": '" << ctx.path << "' has Model = Resultant Plasticity but no positive "
                                      << "'Yield Stress'");
   } else {
-    SHELLFRAC_INPUT_REQUIRE(m.yield_stress == 0 && m.hardening_modulus == 0,
-                            ctx.file << ": '" << ctx.path << "' gives a yield stress or hardening modulus, which only "
-                                     << "Model = Resultant Plasticity uses (the Model is " << m.model << ")");
+    SHELLFRAC_INPUT_REQUIRE(m.yield_stress == 0 && m.hardening_modulus == 0 && !m.shear_in_yield,
+                            ctx.file << ": '" << ctx.path << "' gives a yield stress, hardening modulus or shear yield, "
+                                     << "which only Model = Resultant Plasticity uses (the Model is " << m.model << ")");
   }
   return m;
 }

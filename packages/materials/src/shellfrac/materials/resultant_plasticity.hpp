@@ -8,12 +8,19 @@
 ///
 /// Conventions are those of elastic_resultant.hpp (math.md §3.1): Voigt vectors with engineering shear,
 /// eps_v = [eps_11, eps_22, 2 eps_12], rho_v = [rho_11, rho_22, 2 rho_12]; N_v = [N11, N22, N12],
-/// M_v = [M11, M22, M12] (tensor components); plastic strains eps^p, rho^p use the strain convention. The
-/// transverse shear stays elastic: Q = D_s gam (math.md §4, option (b) is not implemented).
+/// M_v = [M11, M22, M12] (tensor components); plastic strains eps^p, rho^p use the strain convention.
+///
+/// Transverse shear: by default it stays elastic, Q = D_s gam (math.md §4.1 default). With
+/// PlasticSection::a_q > 0 it enters the yield function (math.md §4.1 option (b)):
+///   sigma_eq^2 = a_n N^T P N + a_m M^T P M + a_q |Q|^2 ,  a_q = 3 / h^2 ,
+/// so that pure transverse shear yields at |Q| = Q0 = h sigma_y / sqrt(3) (the resultant of a uniform shear stress
+/// at von Mises' limit tau = sigma_y/sqrt(3); FEniQS's q0, math.md references), with the plastic shear strain
+/// gam^p flowing along dgam a_q Q / sigma_eq. The return map keeps its single scalar equation: Q scales as
+/// Q_tr / (1 + z a_q D_s), a seventh spectral mode (both shear components share one rate).
 ///
 /// The stored (elastic) energy per unit reference area after a return map is
-/// `elastic_energy(s.elastic, eps, gam, rho, next.eps_p, next.rho_p)`; the plastic work increment is returned
-/// by the return map (ReturnMapResult::plastic_work).
+/// `elastic_energy(s.elastic, eps, gam, rho, next.eps_p, next.gam_p, next.rho_p)`; the plastic work increment is
+/// returned by the return map (ReturnMapResult::plastic_work).
 #include <Kokkos_Macros.hpp>
 #include <cmath>
 
@@ -29,13 +36,15 @@ struct PlasticSection {
   double H;                ///< linear isotropic hardening modulus (>= 0)
   double a_n;              ///< 3 / (2 h^2), membrane weight of sigma_eq^2 (math.md §4.1)
   double a_m;              ///< 24 / h^4, bending weight of sigma_eq^2 (math.md §4.1)
+  double a_q;              ///< 3 / h^2 with the transverse shear in the yield function (option (b)), else 0
 };
 
 /// Host helper: section data from Young's modulus E, Poisson's ratio nu, thickness h, initial yield stress
-/// Y0 (> 0), hardening modulus H (>= 0) and shear correction factor kappa (math.md §3.1, §4.1). No
-/// validation here (MaterialParams/BlockParams validate).
+/// Y0 (> 0), hardening modulus H (>= 0), whether the transverse shear is in the yield function (math.md §4.1
+/// option (b)) and shear correction factor kappa (math.md §3.1, §4.1). No validation here
+/// (MaterialParams/BlockParams validate).
 inline PlasticSection make_plastic_section(double E, double nu, double h, double Y0, double H,
-                                           double kappa = 5.0 / 6.0) {
+                                           bool shear_in_yield = false, double kappa = 5.0 / 6.0) {
   PlasticSection s{};
   s.elastic = make_elastic_section(E, nu, h, kappa);
   s.h = h;
@@ -43,15 +52,18 @@ inline PlasticSection make_plastic_section(double E, double nu, double h, double
   s.H = H;
   s.a_n = 3.0 / (2.0 * h * h);
   s.a_m = 24.0 / (h * h * h * h);
+  s.a_q = shear_in_yield ? 3.0 / (h * h) : 0.0;
   return s;
 }
 
-/// Internal state at one area quadrature point (math.md §4.2): eps_v^p, rho_v^p (Voigt, engineering shear)
-/// and the equivalent plastic strain alpha. All zero initially.
+/// Internal state at one area quadrature point (math.md §4.2): eps_v^p, rho_v^p (Voigt, engineering shear),
+/// the equivalent plastic strain alpha and the plastic transverse shear strain gam^p (zero unless the shear
+/// is in the yield function). All zero initially.
 struct PlasticState {
   double eps_p[3];
   double rho_p[3];
   double alpha;
+  double gam_p[2];
 };
 
 /// Outcome of one return map.
@@ -104,11 +116,16 @@ KOKKOS_INLINE_FUNCTION void apply_c0_inverse(double D, double nu, const double x
   y[2] = 2.0 * x[2] / (D * (1.0 - nu));
 }
 
+/// Spectral modes of the return map: 0..2 membrane, 3..5 bending, 6 transverse shear (w_6 = a_q |Q_tr|^2,
+/// b_6 = a_q D_s; both components of Q scale alike, so one mode carries them).
+constexpr int num_modes = 7;
+
 /// F(z) = sqrt(sum_k w_k/(1+z b_k)^2) (= sigma_eq at t_{n+1}) and F'(z) = -(sum_k w_k b_k/(1+z b_k)^3)/F
-/// over the six spectral modes (math.md §4.3 steps 3-4).
-KOKKOS_INLINE_FUNCTION void spectral_F(double z, const double w[6], const double b[6], double& F, double& dF) {
+/// over the spectral modes (math.md §4.3 steps 3-4).
+KOKKOS_INLINE_FUNCTION void spectral_F(double z, const double w[num_modes], const double b[num_modes], double& F,
+                                       double& dF) {
   double f2 = 0.0, s3 = 0.0;
-  for (int k = 0; k < 6; ++k) {
+  for (int k = 0; k < num_modes; ++k) {
     const double r = 1.0 / (1.0 + z * b[k]);
     const double t = w[k] * r * r;
     f2 += t;
@@ -123,8 +140,8 @@ KOKKOS_INLINE_FUNCTION void spectral_F(double z, const double w[6], const double
 ///   psi(z) = -g(z)/F(z) = sy_n/F(z) + (H/h) z - 1 = 0 ,   psi'(z) = -sy_n F'(z)/F(z)^2 + H/h > 0 ,
 /// which is exactly linear in z for a single active spectral mode (F = sqrt(w)/(1 + z b)) and nearly linear
 /// otherwise, whereas g itself is strongly convex (~ 1/(1 + z b)) for large trial states. Also returns F(z).
-KOKKOS_INLINE_FUNCTION void return_map_g(double z, const double w[6], const double b[6], double sy_n, double H_h,
-                                         double& F, double& g, double& newton_step) {
+KOKKOS_INLINE_FUNCTION void return_map_g(double z, const double w[num_modes], const double b[num_modes], double sy_n,
+                                         double H_h, double& F, double& g, double& newton_step) {
   double dF;
   spectral_F(z, w, b, F, dF);
   g = F - (sy_n + H_h * z * F);
@@ -134,17 +151,26 @@ KOKKOS_INLINE_FUNCTION void return_map_g(double z, const double w[6], const doub
 
 }  // namespace detail
 
-/// Equivalent stress sigma_eq(N, M) of math.md §4.1:
-///   sigma_eq^2 = a_n N_v^T P N_v + a_m M_v^T P M_v ,  (3/2) s^T P s = s11^2 - s11 s22 + s22^2 + 3 s12^2.
-/// In uniaxial membrane tension N = [sigma h, 0, 0] it equals |sigma|; for a pure moment M = [M11, 0, 0] it
-/// equals 4 |M11| / h^2 (yield at the Ilyushin limit M0 = sigma_y h^2/4). Evaluated in the spectral form
-/// used by resultant_return_map, so that the elastic test of the return map agrees with this function bit
-/// for bit.
-KOKKOS_INLINE_FUNCTION double equivalent_stress(const PlasticSection& s, const double N[3], const double M[3]) {
+/// Equivalent stress sigma_eq(N, Q, M) of math.md §4.1:
+///   sigma_eq^2 = a_n N_v^T P N_v + a_m M_v^T P M_v + a_q |Q|^2 ,  (3/2) s^T P s = s11^2 - s11 s22 + s22^2 + 3 s12^2
+/// (a_q = 0 unless the transverse shear is in the yield function). In uniaxial membrane tension
+/// N = [sigma h, 0, 0] it equals |sigma|; for a pure moment M = [M11, 0, 0] it equals 4 |M11| / h^2 (yield at
+/// the Ilyushin limit M0 = sigma_y h^2/4); for pure shear (a_q > 0) sqrt(3) |Q| / h. Evaluated in the spectral
+/// form used by resultant_return_map, so that the elastic test of the return map agrees with this function
+/// bit for bit.
+KOKKOS_INLINE_FUNCTION double equivalent_stress(const PlasticSection& s, const double N[3], const double Q[2],
+                                                const double M[3]) {
   double wn[3], wm[3];
   detail::spectral_weights(s.a_n, N, wn);
   detail::spectral_weights(s.a_m, M, wm);
-  return std::sqrt(wn[0] + wn[1] + wn[2] + wm[0] + wm[1] + wm[2]);
+  const double wq = s.a_q * (Q[0] * Q[0] + Q[1] * Q[1]);
+  return std::sqrt(wn[0] + wn[1] + wn[2] + wm[0] + wm[1] + wm[2] + wq);
+}
+
+/// sigma_eq(N, M) without transverse shear (Q = 0).
+KOKKOS_INLINE_FUNCTION double equivalent_stress(const PlasticSection& s, const double N[3], const double M[3]) {
+  const double Q[2] = {0.0, 0.0};
+  return equivalent_stress(s, N, Q, M);
 }
 
 /// Closest-point return map of math.md §4.3 (backward Euler, associative flow of §4.2, hardening
@@ -155,16 +181,16 @@ KOKKOS_INLINE_FUNCTION double equivalent_stress(const PlasticSection& s, const d
 /// result. `next` MAY alias `old` (the old state is copied before anything is written).
 ///
 /// Algorithm (math.md §4.3):
-///  1. trial N_tr = D_n C0 (eps - eps^p_n), M_tr = D_m C0 (rho - rho^p_n), Q = D_s gam (shear always elastic);
-///  2. elastic if sigma_eq(N_tr, M_tr) <= Y0 + H alpha_n: next = old, N = N_tr, M = M_tr, iterations = 0;
+///  1. trial N_tr = D_n C0 (eps - eps^p_n), M_tr = D_m C0 (rho - rho^p_n), Q_tr = D_s (gam - gam^p_n);
+///  2. elastic if sigma_eq(N_tr, Q_tr, M_tr) <= Y0 + H alpha_n: next = old, resultants = trial, iterations = 0;
 ///  3.-4. otherwise solve g(z) = F(z) - (Y0 + H (alpha_n + z F(z)/h)) = 0 for z = dgam/sigma_eq > 0 in the
 ///     spectral basis (P and C0 share eigenvectors, Simo-Taylor; see detail::spectral_weights): safeguarded
 ///     Newton inside a bracket [lo, hi] (an iterate outside the closed bracket is replaced by the midpoint),
 ///     with the RELATIVE stopping tests of math.md, |z_new - z| <= 1e-14 z_new or |g(z)| <= 1e-13 Y0, and at
 ///     most 100 Newton/bisection steps;
-///  5. N = (1 + z a_n D_n C0 P)^{-1} N_tr, M likewise, dgam = z F(z), alpha = alpha_n + dgam/h,
-///     eps^p = eps - (D_n C0)^{-1} N, rho^p = rho - (D_m C0)^{-1} M,
-///     plastic work per unit reference area dW_p = dgam (Y0 + H alpha_{n+1}) = N_{n+1}.d eps^p + M_{n+1}.d rho^p
+///  5. N = (1 + z a_n D_n C0 P)^{-1} N_tr, M likewise, Q = Q_tr / (1 + z a_q D_s), dgam = z F(z),
+///     alpha = alpha_n + dgam/h, eps^p = eps - (D_n C0)^{-1} N, rho^p = rho - (D_m C0)^{-1} M, gam^p = gam - Q/D_s,
+///     plastic work per unit reference area dW_p = dgam (Y0 + H alpha_{n+1}) = N.d eps^p + M.d rho^p + Q.d gam^p
 ///     (sigma_eq is homogeneous of degree 1). Note: sum dW_p = h (Y0 alpha + H alpha^2/2) + (h H/2) sum d alpha^2,
 ///     i.e. it exceeds the integral of h sigma_y d alpha by a first-order term when H > 0.
 ///
@@ -175,7 +201,8 @@ KOKKOS_INLINE_FUNCTION double equivalent_stress(const PlasticSection& s, const d
 ///      lo = (F(0) - sigma_y(alpha_n)) / (F(0) H/h + sigma_y(alpha_n) b_max) ,
 ///      hi = (F(0) - sigma_y(alpha_n)) / (F(0) H/h + sigma_y(alpha_n) b_min) ,
 ///    satisfy g(lo) >= 0 >= g(hi) (both are < h/H, where 1 - (H/h) z > 0), and hi/lo <= b_max/b_min
-///    <= 4 (1-nu)/(1+nu) (b: a_n D_n, a_m D_m = (3/2, 2) E/(h (1-nu^2)) times lamC lamP = ((1+nu)/3, 1-nu, 1-nu)),
+///    <= max(4 (1-nu)/(1+nu), 1.6) (b: a_n D_n, a_m D_m = (3/2, 2) E/(h (1-nu^2)) times lamC lamP = ((1+nu)/3,
+///    1-nu, 1-nu); shear mode b_6 = a_q D_s = (5/4) E/(h (1+nu)) for kappa = 5/6),
 ///    whatever the size of the trial state and of H (the literal bracket needs up to 21 doublings for a trial
 ///    state 1e6 times the yield stress). If |g| <= 1e-13 Y0 at a bracket end, that end is the answer (one active
 ///    mode: lo = hi = root). Round-off fallbacks: if g(lo) < 0 the bracket becomes [0, lo]; while g(hi) > 0, hi
@@ -210,19 +237,23 @@ KOKKOS_INLINE_FUNCTION ReturnMapResult resultant_return_map(const PlasticSection
   // Copy the old state first: `next` may alias `old`.
   const double ep_n[3] = {old.eps_p[0], old.eps_p[1], old.eps_p[2]};
   const double rp_n[3] = {old.rho_p[0], old.rho_p[1], old.rho_p[2]};
+  const double gp_n[2] = {old.gam_p[0], old.gam_p[1]};
   const double alpha_n = old.alpha;
 
   // 1. Elastic trial state (math.md §4.3 step 1).
-  double Ntr[3], Mtr[3];
-  elastic_resultants(el, eps, gam, rho, ep_n, rp_n, Ntr, Q, Mtr);
+  double Ntr[3], Qtr[2], Mtr[3];
+  elastic_resultants(el, eps, gam, rho, ep_n, gp_n, rp_n, Ntr, Qtr, Mtr);
 
   // 2. Yield test with the spectral weights (same expression as equivalent_stress).
-  double w[6], b[6];
+  constexpr int nm = detail::num_modes;
+  double w[nm], b[nm];
   detail::spectral_weights(s.a_n, Ntr, w);
   detail::spectral_weights(s.a_m, Mtr, w + 3);
+  w[6] = s.a_q * (Qtr[0] * Qtr[0] + Qtr[1] * Qtr[1]);
   detail::spectral_rates(s.a_n, el.Dn, el.nu, b);
   detail::spectral_rates(s.a_m, el.Dm, el.nu, b + 3);
-  const double F0 = std::sqrt(w[0] + w[1] + w[2] + w[3] + w[4] + w[5]);
+  b[6] = s.a_q * el.Ds;
+  const double F0 = std::sqrt(w[0] + w[1] + w[2] + w[3] + w[4] + w[5] + w[6]);
   const double sy_n = s.Y0 + s.H * alpha_n;
   if (!(F0 > sy_n)) {
     for (int k = 0; k < 3; ++k) {
@@ -230,6 +261,10 @@ KOKKOS_INLINE_FUNCTION ReturnMapResult resultant_return_map(const PlasticSection
       M[k] = Mtr[k];
       next.eps_p[k] = ep_n[k];
       next.rho_p[k] = rp_n[k];
+    }
+    for (int k = 0; k < 2; ++k) {
+      Q[k] = Qtr[k];
+      next.gam_p[k] = gp_n[k];
     }
     next.alpha = alpha_n;
     return res;
@@ -240,7 +275,7 @@ KOKKOS_INLINE_FUNCTION ReturnMapResult resultant_return_map(const PlasticSection
   const double H_h = s.H / s.h;
 
   double b_min = 0.0, b_max = 0.0;
-  for (int k = 0; k < 6; ++k) {
+  for (int k = 0; k < nm; ++k) {
     if (!(w[k] > 0.0)) continue;
     if (b_min == 0.0 || b[k] < b_min) b_min = b[k];
     if (b[k] > b_max) b_max = b[k];
@@ -304,6 +339,10 @@ KOKKOS_INLINE_FUNCTION ReturnMapResult resultant_return_map(const PlasticSection
   detail::spectral_F(z, w, b, F, dF_unused);
   detail::spectral_scale(z, b, Ntr, N);
   detail::spectral_scale(z, b + 3, Mtr, M);
+  for (int k = 0; k < 2; ++k) {  // elastic shear (a_q = 0): Q and gam^p exactly as before
+    Q[k] = b[6] > 0.0 ? Qtr[k] / (1.0 + z * b[6]) : Qtr[k];
+    next.gam_p[k] = b[6] > 0.0 ? gam[k] - Q[k] / el.Ds : gp_n[k];
+  }
   const double dgam = z * F;
   next.alpha = alpha_n + dgam / s.h;
   double ee[3], re[3];

@@ -89,6 +89,10 @@ Teuchos::RCP<const Teuchos::ParameterList> BoundaryCondition::valid_parameters()
                      "(an end moment without drilling DOFs; math.md §10.1-10.2)",
                      {"Clamped", "Simply Supported", "Symmetry", "Prescribed Velocity", "Prescribed Rotation"});
   pl->set("Node Set", "x_min", "Name of a node set of the mesh");
+  pl->set("Elements", "all",
+          "Element set or block: the condition acts only on the DG copies of the Node Set's nodes that belong to these "
+          "elements; 'all' = every copy. A clamping fixture modelled as part of the mesh (its elements held, the "
+          "edges at its border breakable) uses the fixture's block here");
   pl->set("Normal", Teuchos::Array<double>(Teuchos::tuple<double>(1.0, 0.0, 0.0)), "Symmetry: normal of the symmetry plane {nx, ny, nz}");
   pl->set("Velocity", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0, 0.0)),
           "Prescribed Velocity: final velocity {vx, vy, vz} [length/time]");
@@ -112,6 +116,7 @@ BoundaryCondition BoundaryCondition::from_parameters(const std::string& name, Te
             : type == "Prescribed Velocity" ? Type::PrescribedVelocity
                                             : Type::PrescribedRotation;
   bc.node_set = pl.get<std::string>("Node Set");
+  bc.elements = pl.get<std::string>("Elements");
   const auto vec3 = [&](const char* name) {
     const auto v = pl.get<Teuchos::Array<double>>(name);
     SHELLFRAC_INPUT_REQUIRE(v.size() == 3, ctx.file << ": '" << ctx.path << "->" << name << "' must have 3 components");

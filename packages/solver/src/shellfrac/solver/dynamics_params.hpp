@@ -48,6 +48,7 @@ struct BoundaryCondition {
   std::string name;
   Type type = Type::Clamped;
   std::string node_set;
+  std::string elements = "all";  ///< only the DG copies of the nodes that belong to these elements (set, block or all)
   Vec3 normal{0, 0, 1};    ///< Symmetry: unit normal of the symmetry plane
   Vec3 velocity{0, 0, 0};  ///< Prescribed Velocity: final velocity V0 (directors clamped on the set)
   double ramp_time = 0;    ///< Prescribed Velocity/Rotation: cosine ramp duration t_r (0 = applied at once)

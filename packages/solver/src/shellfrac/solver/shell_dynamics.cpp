@@ -96,6 +96,7 @@ struct ShellDynamics::Impl {
   std::vector<int> istate;
   std::vector<double> dmax, conormal, ucoh, dcoh, act_i, act_e;
   std::vector<double> edge_nm;
+  std::vector<double> crack_log;  // activations of owned interfaces not yet reported, crack_log_width each
   std::vector<std::array<GlobalId, 3>> all_interfaces;  // fracture: (gid, minus gid, plus gid) of every interface
   mutable GlobalId fragments_at = -1;                   // number of separated interfaces the cache belongs to
   mutable GlobalId fragments = 0;
@@ -138,7 +139,9 @@ struct ShellDynamics::Impl {
   void compute_forces();
   void check_finite() const;
   void commit_plasticity();
-  void nucleate();
+  void nucleate(double t1);
+  void log_activation(std::size_t i, double t1, double fbar, const double xm[3][3], const double n[3][3],
+                      const double m[3][3], const double nu[3][3]);
   double element_energy(LocalId le) const;
   template <class F>
   void area_points(LocalId le, F&& f) const;
@@ -207,7 +210,7 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
     const Section& sc = setup.block_sections.at(dm.element_block(le));
     if (!sc.plastic) continue;
     plastic_el[le] = 1, any_plastic = true;
-    psect[le] = materials::make_plastic_section(sc.E, sc.nu, sc.h, sc.Y0, sc.H);
+    psect[le] = materials::make_plastic_section(sc.E, sc.nu, sc.h, sc.Y0, sc.H, sc.shear_yield);
   }
   pstate.assign(any_plastic ? no * nq : 0, materials::PlasticState{});
   pstate_new = pstate;
@@ -330,7 +333,28 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
       std::sort(all_interfaces.begin(), all_interfaces.end());
     }
   }
-  // Boundary conditions on every DG copy of the nodes of a node set (math.md §10.1-10.2).
+  // Elements named by a condition or load: 'all', an element set or a block (flag per mesh element).
+  const auto element_members = [&](const std::string& what, const std::string& name) {
+    std::vector<char> member(mesh.num_elements(), 0);
+    bool found = name == "all";
+    if (found) std::fill(member.begin(), member.end(), 1);
+    for (const auto& es : mesh.element_sets)
+      if (es.name == name) {
+        found = true;
+        for (GlobalId e : es.elements) member[e] = 1;
+      }
+    for (std::size_t bl = 0; bl < mesh.blocks.size(); ++bl)
+      if (mesh.blocks[bl].name == name) {
+        found = true;
+        for (GlobalId e = 0; e < mesh.num_elements(); ++e)
+          if (mesh.element_block[e] == static_cast<int>(bl)) member[e] = 1;
+      }
+    SHELLFRAC_INPUT_REQUIRE(found, file << ": " << what << " names '" << name
+                                        << "', which is neither 'all' nor an element set or block of the mesh");
+    return member;
+  };
+  // Boundary conditions on every DG copy of the nodes of a node set (math.md §10.1-10.2), or only on the copies
+  // that belong to the condition's Elements.
   fixed_x.assign(no * 6, 0), fixed_t.assign(no * 3, 0), presc.assign(no * 6, -1);
   std::vector<int> rot_bc(no * 3, -1);
   sym_x.assign(no * 6, {}), sym_t.assign(no * 3, {}), bc_mask.assign(no * 6, 0);
@@ -346,9 +370,10 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
                                                              << ") does not have; its node sets:" << names);
     std::vector<char> member(mesh.num_nodes(), 0);
     for (GlobalId n : it->nodes) member[n] = 1;
+    const auto in_elements = element_members("boundary condition '" + bc.name + "' (Elements)", bc.elements);
     for (LocalId le = 0; le < no; ++le)
       for (int A = 0; A < 6; ++A) {
-        if (!member[dm.mesh_node(le, A)]) continue;
+        if (!member[dm.mesh_node(le, A)] || !in_elements[dm.element_gid(le)]) continue;
         const int i = le * 6 + A;
         bc_mask[i] |= 1u << ib;
         using T = BoundaryCondition::Type;
@@ -386,25 +411,6 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
         rot_nodes.push_back(rn);
       }
   // Loads: element lists of pressure loads, lumped gravity forces (constant).
-  const auto element_members = [&](const std::string& what, const std::string& name) {
-    std::vector<char> member(mesh.num_elements(), 0);
-    bool found = name == "all";
-    if (found) std::fill(member.begin(), member.end(), 1);
-    for (const auto& es : mesh.element_sets)
-      if (es.name == name) {
-        found = true;
-        for (GlobalId e : es.elements) member[e] = 1;
-      }
-    for (std::size_t bl = 0; bl < mesh.blocks.size(); ++bl)
-      if (mesh.blocks[bl].name == name) {
-        found = true;
-        for (GlobalId e = 0; e < mesh.num_elements(); ++e)
-          if (mesh.element_block[e] == static_cast<int>(bl)) member[e] = 1;
-      }
-    SHELLFRAC_INPUT_REQUIRE(found, file << ": " << what << " names '" << name
-                                        << "', which is neither 'all' nor an element set or block of the mesh");
-    return member;
-  };
   gravity_force.assign(no * nx, 0.0);
   for (const auto& load : setup.loads) {
     const auto member = element_members("load '" + load.name + "'", load.elements);
@@ -652,7 +658,7 @@ void ShellDynamics::Impl::compute_forces() {
               const auto r = materials::resultant_return_map(ps, eps, gam, rho, pold[le * nq + k], st, N, Q, M);
               work += R.wj0[k] * r.plastic_work;
               failed |= r.converged ? 0 : 1;
-              return materials::elastic_energy(ps.elastic, eps, gam, rho, st.eps_p, st.rho_p);
+              return materials::elastic_energy(ps.elastic, eps, gam, rho, st.eps_p, st.gam_p, st.rho_p);
             };
             ep[le] = disc::dg_element_forces(R, xe, te, lf, xn, tn, law, fe, ge, fk, gk, enm);
             pwp[le] = work, failp[le] = failed;
@@ -879,7 +885,7 @@ void ShellDynamics::step() {
   s.commit_plasticity();
   if (s.fracture) {
     ScopedTimer timer(s.times.nucleation);
-    s.nucleate();
+    s.nucleate(t1);
   }
   s.external_forces(t1);
   // Accelerations and corrector (steps 4-5); damping force alpha m v_pre.
@@ -1120,7 +1126,8 @@ double ShellDynamics::Impl::element_energy(LocalId le) const {
   const double zero[3] = {0, 0, 0};
   area_points(le, [&](int, double w, const double* eps, const double* gam, const double* rho,
                       const materials::PlasticState* st) {
-    energy += w * materials::elastic_energy(sect[le], eps, gam, rho, st ? st->eps_p : zero, st ? st->rho_p : zero);
+    energy += w * materials::elastic_energy(sect[le], eps, gam, rho, st ? st->eps_p : zero, st ? st->gam_p : zero,
+                                            st ? st->rho_p : zero);
   });
   return energy;
 }
@@ -1132,7 +1139,7 @@ double ShellDynamics::Impl::element_energy(LocalId le) const {
 // replaced by the cohesive law (delta_max = 0: no force until the faces move). The DG energy this releases
 // (its penalty energy, and the change of the neighbours' strain energy without the lifting, same
 // configuration, frozen plastic state) is booked as activation_loss.
-void ShellDynamics::Impl::nucleate() {
+void ShellDynamics::Impl::nucleate(double t1) {
   const auto& ifs = dm.interfaces();
   std::vector<LocalId> changed;
   for (std::size_t i = 0; i < ifs.size(); ++i) {
@@ -1151,7 +1158,9 @@ void ShellDynamics::Impl::nucleate() {
         tq[j][c] = t[fc.plus * nt + disc::edge_node(fc.plus_edge, j) * 3 + c];
       }
     double nu[3][3];
-    if (interface_nucleation(iref[i], cparams[i], xm, tm, tq, n, m, nu) < 0) continue;
+    const double fbar = interface_nucleation(iref[i], cparams[i], xm, tm, tq, n, m, nu);
+    if (fbar < 0) continue;
+    if (fc.owned) log_activation(i, t1, fbar, xm, n, m, nu);
     istate[i] = cparams[i].Gamma > 0 ? cohesive : separated;
     for (int g = 0; g < 3; ++g) {
       dmax[i * 3 + g] = 0;
@@ -1169,6 +1178,27 @@ void ShellDynamics::Impl::nucleate() {
     act_e[le] += energy_e[le] - after;
     energy_e[le] = after;
   }
+}
+
+// One row of the crack log for interface i activated at t1: where it is and which terms of the equivalent
+// traction made it break (ShellDynamics::crack_events). The in-plane tangent at each edge point is the
+// edge chord of the minus side made orthogonal to nu (a diagnostic: exact for straight edges).
+void ShellDynamics::Impl::log_activation(std::size_t i, double t1, double fbar, const double xm[3][3],
+                                         const double n[3][3], const double m[3][3], const double nu[3][3]) {
+  const auto& fc = dm.interfaces()[i];
+  double parts[5] = {0, 0, 0, 0, 0}, total = 0;
+  for (int g = 0; g < 3; ++g) {
+    double tau[3], tn = 0, tt = 0;
+    for (int c = 0; c < 3; ++c) tau[c] = xm[1][c] - xm[0][c], tn += tau[c] * nu[g][c];
+    for (int c = 0; c < 3; ++c) tau[c] -= tn * nu[g][c], tt += tau[c] * tau[c];
+    for (double& c : tau) c /= std::sqrt(tt);
+    double pg[5];
+    materials::equivalent_traction_parts(cparams[i], n[g], m[g], nu[g], tau, pg);
+    for (int k = 0; k < 5; ++k) parts[k] += iref[i].omega[g] * pg[k], total += iref[i].omega[g] * pg[k];
+  }
+  crack_log.insert(crack_log.end(), {double(step + 1), t1, double(fc.gid + 1), double(dm.element_gid(fc.minus) + 1),
+                                     double(dm.element_gid(fc.plus) + 1), xm[2][0], xm[2][1], xm[2][2], fbar});
+  for (double p : parts) crack_log.push_back(total > 0 ? p / total : 0.0);
 }
 
 // Fragments: connected components of the elements through interfaces that are not fully separated, by
@@ -1211,7 +1241,9 @@ namespace {
 constexpr int ckpt_element_width = 6 * nx + 2 * nt + 27 + 12 + 6;
 // Per-interface columns: state, delta_max (3), co-normal (9), U_coh, D_coh, act_i, penalty energy.
 constexpr int ckpt_interface_width = 17;
-constexpr int ckpt_plastic_width = nq * 7;
+// Per-area-point plastic columns: eps_p (3), rho_p (3), alpha, gam_p (2).
+constexpr int ckpt_plastic_point_width = 9;
+constexpr int ckpt_plastic_width = nq * ckpt_plastic_point_width;
 }  // namespace
 
 io::CheckpointData ShellDynamics::checkpoint() const {
@@ -1238,7 +1270,8 @@ io::CheckpointData ShellDynamics::checkpoint() const {
       pl.ids.push_back(s.dm.element_gid(le));
       for (int q = 0; q < nq; ++q) {
         const auto& st = s.pstate[le * nq + q];
-        pl.values.insert(pl.values.end(), {st.eps_p[0], st.eps_p[1], st.eps_p[2], st.rho_p[0], st.rho_p[1], st.rho_p[2], st.alpha});
+        pl.values.insert(pl.values.end(), {st.eps_p[0], st.eps_p[1], st.eps_p[2], st.rho_p[0], st.rho_p[1], st.rho_p[2],
+                                           st.alpha, st.gam_p[0], st.gam_p[1]});
       }
     }
   }
@@ -1277,6 +1310,7 @@ void ShellDynamics::restore(const io::CheckpointData& d) {
   // The time step is the deck's (the same deck gives the same step, hence a bitwise continuation; a deck with a
   // smaller Time Step or Safety Factor continues a blown-up run from its last good state).
   s.time = scalar("time"), s.step = long(scalar("step"));
+  s.crack_log.clear();
   const auto& el = table("elements", ckpt_element_width);
   const io::CheckpointTable* pl = s.any_plastic ? &table("plastic", ckpt_plastic_width) : nullptr;
   for (LocalId le = 0; le < s.no; ++le) {
@@ -1291,9 +1325,10 @@ void ShellDynamics::restore(const io::CheckpointData& d) {
     if (pl) {
       const double* p = pl->row(gid);
       SHELLFRAC_INPUT_REQUIRE(p, file << ": the checkpoint has no plastic state for element " << gid + 1);
-      for (int q = 0; q < nq; ++q, p += 7) {
+      for (int q = 0; q < nq; ++q, p += ckpt_plastic_point_width) {
         auto& st = s.pstate[le * nq + q];
         std::copy(p, p + 3, st.eps_p), std::copy(p + 3, p + 6, st.rho_p), st.alpha = p[6];
+        std::copy(p + 7, p + 9, st.gam_p);
       }
     }
   }
@@ -1313,6 +1348,25 @@ void ShellDynamics::restore(const io::CheckpointData& d) {
   }
   s.fragments_at = -1;
   s.sync_state();
+}
+
+std::vector<std::string> ShellDynamics::crack_event_columns() {
+  return {"step",        "time",          "interface",         "element_minus",         "element_plus",
+          "x",           "y",             "z",                 "fbar",                  "share_normal",
+          "share_inplane_shear", "share_transverse_shear", "share_couple_normal", "share_couple_shear"};
+}
+
+std::vector<std::vector<double>> ShellDynamics::crack_events() {
+  Impl& s = *impl_;
+  const std::size_t width = crack_event_columns().size();
+  const auto all = parallel::all_gather(s.crack_log, s.dm.comm());
+  s.crack_log.clear();
+  std::vector<std::vector<double>> rows;
+  for (std::size_t k = 0; k + width <= all.size(); k += width) rows.emplace_back(all.begin() + k, all.begin() + k + width);
+  std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) {
+    return a[0] != b[0] ? a[0] < b[0] : a[2] < b[2];  // by step, then interface id
+  });
+  return rows;
 }
 
 std::vector<std::vector<double>> ShellDynamics::fragment_table() const {
@@ -1356,7 +1410,8 @@ void ShellDynamics::element_fields(std::vector<std::vector<double>>& fields) con
     s.area_points(le, [&](int, double w, const double* eps, const double* gam, const double* rho,
                           const materials::PlasticState* st) {
       double N[3], Q[2], M[3];
-      materials::elastic_resultants(s.sect[le], eps, gam, rho, st ? st->eps_p : zero, st ? st->rho_p : zero, N, Q, M);
+      materials::elastic_resultants(s.sect[le], eps, gam, rho, st ? st->eps_p : zero, st ? st->gam_p : zero,
+                                    st ? st->rho_p : zero, N, Q, M);
       fields[0][le] += w / area * (st ? st->alpha : 0.0);
       fields[1][le] += w / area * vm_norm(N);
       fields[2][le] += w / area * vm_norm(M);

@@ -31,6 +31,7 @@ struct Section {
   double E = 0, nu = 0, rho = 0, h = 0;
   bool plastic = false;  ///< resultant plasticity (math.md §4) with yield stress Y0 and hardening modulus H
   double Y0 = 0, H = 0;
+  bool shear_yield = false;  ///< transverse shear in the yield function (math.md §4.1 option (b))
   double sigma_c = 0, Gamma = 0;  ///< cohesive strength (0 = unbreakable) and work of separation (math.md §9)
 };
 
@@ -127,6 +128,15 @@ class ShellDynamics {
   /// centre of mass x/y/z, momentum x/y/z}, summed over elements in global-id order (rank-count independent).
   /// Collective; the rows are the same on every rank.
   std::vector<std::vector<double>> fragment_table() const;
+  /// The crack log: one row per interface activated since the last call, sorted by step and interface id,
+  /// the same on every rank (and for any rank count): step, time, interface id (global, 1-based), the element
+  /// ids (1-based) of its two sides, the current position of the edge's mid-point, the edge-averaged nucleation
+  /// function fbar (>= 0), and the shares of the five terms of n_eq^2 (edge-averaged, summing to 1): normal
+  /// opening, in-plane sliding, transverse (out-of-plane) sliding, normal and shear director couples
+  /// (materials::equivalent_traction_parts). Collective.
+  std::vector<std::vector<double>> crack_events();
+  /// Column names of crack_events() rows.
+  static std::vector<std::string> crack_event_columns();
   /// Owned DG nodal fields, element-major as DistributedMesh::node_coords: displacement, velocity, director
   /// (P1: mid-side nodes show the mean of their edge's vertex directors).
   void nodal_fields(std::vector<Vec3>& displacement, std::vector<Vec3>& velocity, std::vector<Vec3>& director) const;

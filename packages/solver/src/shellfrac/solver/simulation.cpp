@@ -205,9 +205,12 @@ DynamicsSetup make_dynamics_setup(const Deck& deck, const mesh::SerialMesh& mesh
   for (const auto& b : mesh.blocks) {
     const auto& sec = deck.blocks.at(b.name);
     const auto& mat = deck.materials.at(sec.material);
-    setup.block_sections.push_back({mat.youngs_modulus, mat.poissons_ratio, mat.density, sec.thickness, mat.plastic(),
-                                    mat.yield_stress, mat.hardening_modulus, mat.cohesive_strength,
-                                    mat.fracture_energy});
+    Section sc;
+    sc.E = mat.youngs_modulus, sc.nu = mat.poissons_ratio, sc.rho = mat.density, sc.h = sec.thickness;
+    sc.plastic = mat.plastic(), sc.Y0 = mat.yield_stress, sc.H = mat.hardening_modulus;
+    sc.shear_yield = mat.shear_in_yield;
+    sc.sigma_c = mat.cohesive_strength, sc.Gamma = mat.fracture_energy;
+    setup.block_sections.push_back(sc);
   }
   setup.discretization = deck.discretization;
   setup.time = deck.time;
@@ -303,6 +306,11 @@ std::string Simulation::fragments_path() const {
   return (o.directory.empty() ? std::string() : o.directory + "/") + o.base_name + "_fragments.csv";
 }
 
+std::string Simulation::cracks_path() const {
+  const auto& o = deck_.output;
+  return (o.directory.empty() ? std::string() : o.directory + "/") + o.base_name + "_cracks.csv";
+}
+
 std::string Simulation::history_path() const {
   const auto& o = deck_.output;
   return (o.directory.empty() ? std::string() : o.directory + "/") + o.base_name + "_history.csv";
@@ -338,7 +346,10 @@ RunSummary Simulation::run() {
   parallel::on_root_then_agree(
       [&] {
         remove_stale_results(exo_path);
-        if (!restarted) std::filesystem::remove(fragments_path());  // a fragment table of an earlier run would mislead
+        if (!restarted) {  // fragment and crack tables of an earlier run would mislead
+          std::filesystem::remove(fragments_path());
+          std::filesystem::remove(cracks_path());
+        }
       },
       0, comm_);
   io::ExodusResultsWriter exo(exo_path, layout, comm_);
@@ -369,6 +380,16 @@ RunSummary Simulation::run() {
   if (dyn.fracture())
     fragment_csv = restarted ? std::make_unique<io::HistoryWriter>(fragments_path(), fragment_columns, dyn.time(), comm_)
                              : std::make_unique<io::HistoryWriter>(fragments_path(), fragment_columns, comm_);
+  // Fracture runs: a row per activated edge (the crack log), reported at history and checkpoint times.
+  std::unique_ptr<io::HistoryWriter> crack_csv;
+  if (dyn.fracture())
+    crack_csv = restarted ? std::make_unique<io::HistoryWriter>(cracks_path(), ShellDynamics::crack_event_columns(),
+                                                                double(summary_.restart_step), comm_)
+                          : std::make_unique<io::HistoryWriter>(cracks_path(), ShellDynamics::crack_event_columns(), comm_);
+  auto write_cracks = [&] {
+    if (crack_csv)
+      for (const auto& row : dyn.crack_events()) crack_csv->write_row(row);
+  };
   auto write_output = [&](bool fragment_rows = true) {
     if (fragment_csv && fragment_rows)
       for (auto row : dyn.fragment_table()) {
@@ -386,6 +407,7 @@ RunSummary Simulation::run() {
   const auto& ck = deck_.checkpoint;
   const bool checkpointing = ck.step_interval > 0 || ck.wall_minutes > 0;
   auto write_checkpoint = [&] {
+    write_cracks();  // the crack log is complete through the checkpoint's step (a restart keeps those rows)
     auto data = dyn.checkpoint();
     data.scalars["e0"] = e0;
     data.strings["deck"] = deck_.file;
@@ -408,6 +430,7 @@ RunSummary Simulation::run() {
     for (double f : dyn.reactions()) row.push_back(f);
     for (double l : r.angular_momentum) row.push_back(l);
     history.write_row(row);
+    write_cracks();
   };
   const auto& tp = deck_.time;
   const double output_step = tp.output_interval > 0 ? tp.output_interval : tp.end_time;
@@ -476,7 +499,11 @@ RunSummary Simulation::run() {
   summary_.files = {np == 1 ? exo_path : io::rank_file_name(exo_path, np, 0) + " ... (" + std::to_string(np) + " files)",
                     history_path()};
   if (checkpointing || summary_.stopped_by_signal) summary_.files.push_back(checkpoint_path());
-  if (dynamics_->fracture()) summary_.files.push_back(fragments_path());
+  if (dynamics_->fracture()) {
+    write_cracks();
+    summary_.files.push_back(fragments_path());
+    summary_.files.push_back(cracks_path());
+  }
   return summary_;
 }
 

@@ -100,6 +100,8 @@ class Simulation {
   std::string history_path() const;
   /// <dir>/<base>_fragments.csv: one row per fragment at each output time (fracture runs only).
   std::string fragments_path() const;
+  /// <dir>/<base>_cracks.csv: one row per activated edge (fracture runs only; ShellDynamics::crack_events).
+  std::string cracks_path() const;
   /// Path of the checkpoint file this run writes.
   std::string checkpoint_path() const;
 
