@@ -13,8 +13,17 @@ the nearer support of the elements damaged at the first Exodus output with damag
 of those elements at that first output (t_frame); v_centre_end = downward centre velocity at the end
 (about V0: the beam has come off the supports).
 
+Regime of a run (column `regime`, from the crack log <name>_cracks.csv): I = no edge broke; otherwise the
+mode of the first activation step (`mode_first`), from the mean shares of the terms of n_eq^2 over the edges
+that activated in that step: 'shear' (transverse sliding, the shear-off term) when it is the largest of
+{in-plane (normal + in-plane sliding), transverse sliding, couples}, giving regime III; else regime II.
+With --thresholds the grid is refined by bisection where the regime changes (to --tol), and the two
+thresholds (I->II, II->III) are printed and, with --doc, written as a Markdown section.
+
   /usr/bin/python3 tools/beam_blast_sweep.py -v 40:240:20 -c 40x5 -t 1e-3 -o /tmp/blast_sweep
   /usr/bin/python3 tools/beam_blast_sweep.py -v 62 101 225 -c 80x10 -t 2e-4 -o /tmp/b --alpha1 2
+  /usr/bin/python3 tools/beam_blast_sweep.py -v 40:240:20 -c 40x5 -t 4e-4 -o /tmp/b --shear-yield \
+      --alpha1 0.5773502691896258 --thresholds --doc docs/beam_blast_thresholds.md
 """
 import argparse, csv, os, subprocess, sys
 import numpy as np
@@ -22,7 +31,8 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 L, W, H, RHO, SIGC, E, NU = 0.2, 0.025, 6.53e-3, 2693.0, 375e6, 68.9e9, 0.343
 
-COLUMNS = ["V0", "mesh", "alpha1", "shear_yield", "fixture", "t_act_us", "w_act_mm", "where_first", "dist_first_mm", "t_last_act_us",
+COLUMNS = ["V0", "mesh", "alpha1", "shear_yield", "fixture", "regime", "mode_first", "share_inplane",
+           "share_transverse", "t_act_us", "w_act_mm", "where_first", "dist_first_mm", "t_last_act_us",
            "w_last_act_mm", "n_act_events", "n_sep", "n_frag", "where_end", "dist_end_mm", "w_max_mm",
            "v_centre_end", "t_frame_us", "eps_p_frame", "W_p_J", "rel_energy_err", "t_end_us", "rc"]
 
@@ -70,9 +80,9 @@ DECK = """<ParameterList name="shellfrac">
 
 def write_mesh(path, nx, ny, nc=0):
     """Gmsh 2.2: nx x ny cells over the span, chessboard diagonals, curves x_min/x_max (x = 0, L), point set
-    centre (x = L/2). nc > 0: nc more columns of cells on each side (x < 0 and x > L) in block 'clamps' with the
-    node set 'clamp_nodes' (every node at x <= 0 or x >= L): the fixture, held through its elements only, so
-    that the edges at x = 0 and x = L are interior edges that can break."""
+    centre (x = L/2). nc > 0: nc more columns of cells on each side (x < 0 and x > L) in block 'clamps': the
+    fixture, held through its elements only (Node Set = all, Elements = clamps), so that the edges at x = 0 and
+    x = L are interior edges that can break."""
     dx, nt = L / nx, nx + 2 * nc
     tag = lambda i, j: j * (nt + 1) + i + 1          # i = 0 .. nt (x = (i - nc) dx)
     nodes = [f"{tag(i, j)} {(i - nc) * dx:.16g} {j * W / ny:.16g} 0" for j in range(ny + 1) for i in range(nt + 1)]
@@ -85,9 +95,7 @@ def write_mesh(path, nx, ny, nc=0):
                 lines.append(f"2 2 {g} {g} {' '.join(map(str, t))}")
     lines += [f"1 2 {g} {g} {tag(i, j)} {tag(i, j + 1)}" for g, i in ((2, nc), (3, nc + nx)) for j in range(ny)]
     lines += [f"15 2 4 4 {tag(nc + nx // 2, j)}" for j in range(ny + 1)]
-    if nc:
-        lines += [f"15 2 6 6 {tag(i, j)}" for j in range(ny + 1) for i in range(nt + 1) if i <= nc or i >= nc + nx]
-    names = ['2 1 "beam"', '1 2 "x_min"', '1 3 "x_max"', '0 4 "centre"'] + (['2 5 "clamps"', '0 6 "clamp_nodes"'] if nc else [])
+    names = ['2 1 "beam"', '1 2 "x_min"', '1 3 "x_max"', '0 4 "centre"'] + (['2 5 "clamps"'] if nc else [])
     with open(path, "w") as f:
         f.write(f"$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n{len(names)}\n" + "\n".join(names)
                 + "\n$EndPhysicalNames\n")
@@ -103,7 +111,7 @@ BCS_EDGES = """
       <Parameter name="Node Set" type="string" value="x_max"/></ParameterList>"""
 BCS_FIXTURE = """
     <ParameterList name="fixture"><Parameter name="Type" type="string" value="Clamped"/>
-      <Parameter name="Node Set" type="string" value="clamp_nodes"/>
+      <Parameter name="Node Set" type="string" value="all"/>
       <Parameter name="Elements" type="string" value="clamps"/></ParameterList>"""
 CLAMP_BLOCK = """<ParameterList name="clamps">
     <Parameter name="Thickness" type="double" value="{h}"/>
@@ -166,7 +174,26 @@ def run_one(v0, nx, ny, tend, outdir, binary, alpha1, dtout, shear_yield, nc):
         print(f"  {name}.exo: {e}", file=sys.stderr)
     row.update(W_p_J=hist["plastic_dissipation"][-1],
                rel_energy_err=np.max(np.abs(hist["energy_balance_error"])) / hist["kinetic_energy"][0])
+    row.update(first_mode(os.path.join(outdir, name + "_cracks.csv")))
     return row
+
+
+def first_mode(path):
+    """Regime and dominant mode of the first activation step from the crack log (see the module comment)."""
+    try:
+        with open(path) as f:
+            rows = list(csv.DictReader(f))
+    except OSError:
+        return {}
+    if not rows:
+        return dict(regime="I", mode_first="none")
+    first = [r for r in rows if r["step"] == rows[0]["step"]]
+    mean = lambda *keys: float(np.mean([sum(float(r[k]) for k in keys) for r in first]))
+    inplane, transverse = mean("share_normal", "share_inplane_shear"), mean("share_transverse_shear")
+    couples = mean("share_couple_normal", "share_couple_shear")
+    mode = max((inplane, "in-plane"), (transverse, "shear"), (couples, "couples"))[1]
+    return dict(regime="III" if mode == "shear" else "II", mode_first=mode, share_inplane=inplane,
+                share_transverse=transverse)
 
 
 def main():
@@ -180,6 +207,10 @@ def main():
                    help="Shear Yield = true: transverse shear in the yield function (math.md §4.1 option (b))")
     p.add_argument("--fixture", type=int, default=0,
                    help="columns of cells of clamping fixture on each side (0: clamped end edges, which cannot break)")
+    p.add_argument("--thresholds", action="store_true",
+                   help="bisect between grid velocities where the regime changes, to --tol")
+    p.add_argument("--tol", type=float, default=2.0, help="threshold bisection tolerance [m/s]")
+    p.add_argument("--doc", help="write the thresholds and the runs as a Markdown file")
     p.add_argument("--output-interval", type=float, default=1e-5, help="Exodus output interval [s]")
     p.add_argument("--binary", default=os.path.join(ROOT, "build/apps/shellfrac/shellfrac"))
     a = p.parse_args()
@@ -192,10 +223,33 @@ def main():
         sys.exit("the number of cells along x must be even (centre probe)")
     os.makedirs(a.outdir, exist_ok=True)
     rows = []
-    for v in vs:
+
+    def run(v):
         rows.append(run_one(float(v), nx, ny, a.end_time, os.path.abspath(a.outdir), a.binary, a.alpha1,
                             a.output_interval, a.shear_yield, a.fixture))
-        print(f"  V0 = {v:g} m/s: rc {rows[-1]['rc']}, t_act {rows[-1].get('t_act_us', '-')} us", file=sys.stderr)
+        print(f"  V0 = {v:g} m/s: rc {rows[-1]['rc']}, regime {rows[-1].get('regime', '?')}, "
+              f"t_act {rows[-1].get('t_act_us', '-')} us", file=sys.stderr)
+        return rows[-1].get("regime", "?")
+
+    for v in vs:
+        run(v)
+    thresholds = {}
+    if a.thresholds:
+        order = {"I": 1, "II": 2, "III": 3}
+        grid = sorted(((r["V0"], r.get("regime", "?")) for r in rows), key=lambda x: x[0])
+        for target in (2, 3):  # the lowest V0 whose regime is >= target, between two grid points
+            lo = max((v for v, g in grid if order.get(g, 0) < target), default=None)
+            hi = min((v for v, g in grid if order.get(g, 0) >= target and (lo is None or v > lo)), default=None)
+            if lo is None or hi is None:
+                continue
+            while hi - lo > a.tol:
+                mid = 0.5 * (lo + hi)
+                if order.get(run(mid), 0) >= target:
+                    hi = mid
+                else:
+                    lo = mid
+            thresholds["I->II" if target == 2 else "II->III"] = (lo, hi)
+        rows.sort(key=lambda r: r["V0"])
     keys = [k for k in COLUMNS if any(k in r for r in rows)]
     with open(os.path.join(a.outdir, "sweep.csv"), "w", newline="") as f:
         wr = csv.DictWriter(f, keys)
@@ -204,9 +258,22 @@ def main():
     fmt = lambda x: f"{x:.4g}" if isinstance(x, float) else str(x)
     print(f"S0 = h sigma_c = {H * SIGC:.4g} N/m; elastic shear at the clamp rho h c_s V0 = S0 at V0 = "
           f"{SIGC / (RHO * np.sqrt(5 / 6 * E / (2 * (1 + NU)) / RHO)):.1f} m/s (kappa = 5/6)\n")
-    print("| " + " | ".join(keys) + " |\n|" + "---|" * len(keys))
-    for r in rows:
-        print("| " + " | ".join(fmt(r.get(k, "")) for k in keys) + " |")
+    table = "| " + " | ".join(keys) + " |\n|" + "---|" * len(keys) + "\n"
+    table += "".join("| " + " | ".join(fmt(r.get(k, "")) for k in keys) + " |\n" for r in rows)
+    print(table)
+    for name, (lo, hi) in thresholds.items():
+        print(f"threshold {name}: between {lo:.4g} and {hi:.4g} m/s")
+    if a.doc:
+        with open(a.doc, "w") as f:
+            f.write("# Beam blast: regime thresholds (written by tools/beam_blast_sweep.py)\n\n")
+            f.write(f"Command: `/usr/bin/python3 tools/beam_blast_sweep.py {' '.join(sys.argv[1:])}`\n\n")
+            f.write(f"Mesh {a.cells} cells over the span, end time {a.end_time:g} s, Alpha 1 = {a.alpha1:.6g}, "
+                    f"Shear Yield = {'true' if a.shear_yield else 'false'}, fixture columns {a.fixture}. Regimes from "
+                    "the crack log: I = no fracture, II = first edges break in an in-plane (tensile) mode, III = they "
+                    "break in transverse shear.\n\n")
+            for name, (lo, hi) in thresholds.items():
+                f.write(f"* **{name}: {lo:.4g}–{hi:.4g} m/s** (impulse {lo * RHO * H:.4g}–{hi * RHO * H:.4g} Pa·s)\n")
+            f.write("\n" + table)
 
 
 if __name__ == "__main__":

@@ -189,6 +189,28 @@ void expect_plastic_return_consistent(const PlasticSection& s, const double eps[
   EXPECT_NEAR(r.plastic_work, dgam * sy, 1e-12 * r.plastic_work + 4e-16 * s.h * next.alpha * sy);
 }
 
+/// Normality (math.md §4.2) with one dgam = h d alpha for all plastic strains, to 1e-10 relative (norm-wise):
+/// d eps^p = dgam a_n P N / sigma_eq, d rho^p = dgam a_m P M / sigma_eq, d gam^p = dgam a_q Q / sigma_eq (zero
+/// when the shear is elastic, a_q = 0).
+void expect_normality(const PlasticSection& s, const PlasticState& old, const PlasticState& next, const double N[3],
+                      const double Q[2], const double M[3]) {
+  const double seq = equivalent_stress(s, N, Q, M), dgam = s.h * (next.alpha - old.alpha);
+  double PN[3], PM[3], dep[3], drp[3], dep_ref[3], drp_ref[3];
+  apply_P(N, PN);
+  apply_P(M, PM);
+  for (int k = 0; k < 3; ++k) {
+    dep[k] = next.eps_p[k] - old.eps_p[k];
+    drp[k] = next.rho_p[k] - old.rho_p[k];
+    dep_ref[k] = dgam * s.a_n * PN[k] / seq;
+    drp_ref[k] = dgam * s.a_m * PM[k] / seq;
+  }
+  const double dgp[2] = {next.gam_p[0] - old.gam_p[0], next.gam_p[1] - old.gam_p[1]};
+  const double dgp_ref[2] = {dgam * s.a_q * Q[0] / seq, dgam * s.a_q * Q[1] / seq};
+  EXPECT_LE(diff3(dep, dep_ref), 1e-10 * norm3(dep_ref));
+  EXPECT_LE(diff3(drp, drp_ref), 1e-10 * norm3(drp_ref));
+  EXPECT_LE(std::hypot(dgp[0] - dgp_ref[0], dgp[1] - dgp_ref[1]), 1e-10 * std::hypot(dgp_ref[0], dgp_ref[1]));
+}
+
 /// Root of a monotonically increasing scalar function f by bracketing and the Illinois (modified regula falsi)
 /// method, |f| <= tol. Used to impose N22 = 0 or M22 = 0 through the lateral strain.
 template <class Fun>
@@ -671,18 +693,7 @@ TEST(ResultantPlasticity, ClosestPointNormalityAndMinimality) {
       double N[3], Q[2], M[3];
       const ReturnMapResult r = resultant_return_map(s, eps, gam, rho, old, next, N, Q, M);
       expect_plastic_return_consistent(s, eps, gam, rho, old, next, N, Q, M, r);
-      const double seq = equivalent_stress(s, N, M), dgam = s.h * (next.alpha - old.alpha);
-      double PN[3], PM[3], dep[3], drp[3], dep_ref[3], drp_ref[3];
-      apply_P(N, PN);
-      apply_P(M, PM);
-      for (int k = 0; k < 3; ++k) {
-        dep[k] = next.eps_p[k] - old.eps_p[k];
-        drp[k] = next.rho_p[k] - old.rho_p[k];
-        dep_ref[k] = dgam * s.a_n * PN[k] / seq;
-        drp_ref[k] = dgam * s.a_m * PM[k] / seq;
-      }
-      EXPECT_LE(diff3(dep, dep_ref), 1e-10 * norm3(dep_ref));
-      EXPECT_LE(diff3(drp, drp_ref), 1e-10 * norm3(drp_ref));
+      expect_normality(s, old, next, N, Q, M);
 
       // Complementary-energy distance (the objective of prototype/test_plast.py).
       double Ntr[3], Mtr[3], Qtr[2];
@@ -1033,21 +1044,7 @@ TEST(ResultantPlasticityShearYield, ConsistencyAndNormality) {
       const ReturnMapResult r = resultant_return_map(s, eps, gam, rho, old, next, N, Q, M);
       expect_plastic_return_consistent(s, eps, gam, rho, old, next, N, Q, M, r);
       stats.add(r);
-      const double seq = equivalent_stress(s, N, Q, M), dgam = s.h * (next.alpha - old.alpha);
-      double PN[3], PM[3], dep[3], drp[3], dep_ref[3], drp_ref[3];
-      apply_P(N, PN);
-      apply_P(M, PM);
-      for (int k = 0; k < 3; ++k) {
-        dep[k] = next.eps_p[k] - old.eps_p[k];
-        drp[k] = next.rho_p[k] - old.rho_p[k];
-        dep_ref[k] = dgam * s.a_n * PN[k] / seq;
-        drp_ref[k] = dgam * s.a_m * PM[k] / seq;
-      }
-      const double dgp[2] = {next.gam_p[0] - old.gam_p[0], next.gam_p[1] - old.gam_p[1]};
-      const double dgp_ref[2] = {dgam * s.a_q * Q[0] / seq, dgam * s.a_q * Q[1] / seq};
-      EXPECT_LE(diff3(dep, dep_ref), 1e-10 * norm3(dep_ref));
-      EXPECT_LE(diff3(drp, drp_ref), 1e-10 * norm3(drp_ref));
-      EXPECT_LE(std::hypot(dgp[0] - dgp_ref[0], dgp[1] - dgp_ref[1]), 1e-10 * std::hypot(dgp_ref[0], dgp_ref[1]));
+      expect_normality(s, old, next, N, Q, M);
 
       double Ntr[3], Mtr[3], Qtr[2];
       elastic_resultants(s.elastic, eps, gam, rho, old.eps_p, old.gam_p, old.rho_p, Ntr, Qtr, Mtr);

@@ -175,4 +175,24 @@ inline std::string slurp(const std::string& path) {
   return ss.str();
 }
 
+/// Replaces the first occurrence of `from` in `text` (which must be there) by `to`.
+inline void replace(std::string& text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  ASSERT_NE(at, std::string::npos) << from;
+  text.replace(at, from.size(), to);
+}
+
+/// The example deck xml/<name> of the source tree, made to run from a test: its mesh files ("meshes/...")
+/// by absolute path, and its results written to `out_dir` (a Directory entry before its Probes).
+inline std::string example_deck(const std::string& name, const std::string& out_dir) {
+  std::string text = slurp(std::string(SHELLFRAC_SOURCE_DIR) + "/xml/" + name);
+  EXPECT_FALSE(text.empty()) << "xml/" << name;
+  const auto at = text.find("value=\"meshes/");
+  if (at != std::string::npos)
+    text.replace(at, 14, "value=\"" + std::string(SHELLFRAC_SOURCE_DIR) + "/xml/meshes/");
+  replace(text, "<Parameter name=\"Probes\"",
+          "<Parameter name=\"Directory\" type=\"string\" value=\"" + out_dir + "\"/><Parameter name=\"Probes\"");
+  return text;
+}
+
 }  // namespace shellfrac::test

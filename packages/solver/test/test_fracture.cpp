@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -195,4 +196,88 @@ TEST(Fracture, SameBreaksOnAnyRankCount) {
     EXPECT_NEAR(sum, 1.0, 1e-12);
   }
   expect_same_as_serial(sim, text, dir, "beam");
+}
+
+// A clamping fixture that is part of the mesh (boundary condition with Elements = its block): only the
+// fixture's DG copies of the border nodes are held, so the beam's copies move and the edges on the border are
+// interior edges that can break. References: the definition of the option (docs/theory.md, "Conditions and
+// loads"); the border edges are where the shear force of a suddenly stopped beam is largest, so at 225 m/s with
+// an elastic shear force (docs/beam_blast.md: threshold sigma_c/(rho c_s') = 49 m/s) they break first.
+TEST(Fracture, FixtureBorderEdgesBreak) {
+  const auto dir = work_dir("fracture_fixture");
+  constexpr double lf = 0.01, span = 0.2, width = 0.025, hb = 6.53e-3;  // 2 fixture cells of 5 mm each side
+  if (parallel::rank() == 0) {
+    auto m = mesh::make_rectangle(span + 2 * lf, width, 44, 5, mesh::DiagonalPattern::Alternating, -lf);
+    m.blocks.push_back({"fixture", 2});
+    for (GlobalId e = 0; e < m.num_elements(); ++e) {
+      double xc = 0;
+      for (int k = 0; k < 3; ++k) xc += m.coords[m.node(e, k)][0] / 3;
+      if (xc < 0 || xc > span) m.element_block[e] = 1;
+    }
+    mesh::promote_to_p2(m);
+    meshio::write_exodus_mesh(m, dir + "/fixture_mesh.exo");
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  const std::string body =
+      "<ParameterList name=\"Time Integration\"><Parameter name=\"End Time\" type=\"double\" value=\"3e-6\"/>"
+      "<Parameter name=\"Output Interval\" type=\"double\" value=\"1e-6\"/></ParameterList>\n"
+      "<ParameterList name=\"Boundary Conditions\">"
+      "<ParameterList name=\"fixture\"><Parameter name=\"Type\" type=\"string\" value=\"Clamped\"/>"
+      "<Parameter name=\"Node Set\" type=\"string\" value=\"all\"/>"
+      "<Parameter name=\"Elements\" type=\"string\" value=\"fixture\"/></ParameterList></ParameterList>\n"
+      "<ParameterList name=\"Initial Conditions\"><ParameterList name=\"impulse\">"
+      "<Parameter name=\"Elements\" type=\"string\" value=\"shell\"/>"
+      "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{0.0, 0.0, -225.0}\"/></ParameterList></ParameterList>\n";
+  const std::string mesh_xml =
+      "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"File\"/>"
+      "<Parameter name=\"File\" type=\"string\" value=\"fixture_mesh.exo\"/></ParameterList>\n";
+  std::string text = deck(mesh_xml, body, dir, "{}", {hb, 2693, 68.9e9, 0.343});
+  text.replace(text.find("<Parameter name=\"Density\""), 0,
+               "<Parameter name=\"Cohesive Strength\" type=\"double\" value=\"375e6\"/>");
+  const std::string blocks_end = "</ParameterList></ParameterList>";  // end of the block "shell" and of Blocks
+  const auto at = text.find(blocks_end, text.find("<ParameterList name=\"Blocks\">"));
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at + std::string("</ParameterList>").size(),
+              "<ParameterList name=\"fixture\"><Parameter name=\"Thickness\" type=\"double\" value=\"" +
+                  xml_double(hb) + "\"/><Parameter name=\"Material\" type=\"string\" value=\"m\"/></ParameterList>");
+  write_file(dir + "/fixture.xml", text);
+  solver::Simulation sim(dir + "/fixture.xml");
+  sim.run();
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (parallel::rank() == 0) {
+    const auto res = io::read_results(sim.exodus_path());
+    ASSERT_GE(res.times.size(), 2u);
+    const auto dz = std::find(res.nodal_names.begin(), res.nodal_names.end(), "displ_z") - res.nodal_names.begin();
+    ASSERT_LT(std::size_t(dz), res.nodal_names.size());
+    const int npe = res.nodes_per_element;
+    const auto& w = res.nodal.back()[dz];
+    int held_copies = 0, free_border_copies = 0;
+    for (std::size_t e = 0; e < res.element_gids.size(); ++e) {
+      const bool fixture = res.element_block_ids[e] == 2;
+      for (int a = 0; a < npe; ++a) {
+        const double x = res.node_coords[e * npe + a][0];
+        if (fixture && (x < 1e-9 || x > span - 1e-9)) {
+          EXPECT_EQ(w[e * npe + a], 0.0) << "a held copy moved, x = " << x;
+          ++held_copies;
+        }
+        if (!fixture && (std::abs(x) < 1e-9 || std::abs(x - span) < 1e-9)) {
+          EXPECT_LT(w[e * npe + a], -1e-5) << "the beam's copy on the border must move";
+          ++free_border_copies;
+        }
+      }
+    }
+    EXPECT_GT(held_copies, 0);
+    EXPECT_GT(free_border_copies, 0);
+    std::vector<std::string> hc;
+    const auto cracks = read_history(sim.cracks_path(), hc);
+    ASSERT_FALSE(cracks.empty());
+    const double first_step = cracks.front()[column(hc, "step")];
+    for (const auto& r : cracks) {
+      if (r[column(hc, "step")] != first_step) break;
+      const double x = r[column(hc, "x")];
+      EXPECT_TRUE(std::abs(x) < 1e-3 || std::abs(x - span) < 1e-3) << "first edges broken at x = " << x;
+      EXPECT_GT(r[column(hc, "share_transverse_shear")], 0.5);
+    }
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
 }

@@ -24,16 +24,6 @@
 using namespace shellfrac;
 using namespace shellfrac::test;
 
-namespace {
-
-/// Replaces the first occurrence of `from` in `text` (which must be there) by `to`.
-void replace(std::string& text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  ASSERT_NE(at, std::string::npos) << from;
-  text.replace(at, from.size(), to);
-}
-
-}  // namespace
 
 TEST(Plasticity, PlaneStrainBendingFollowsThePointLaw) {
   if (parallel::size() > 1) GTEST_SKIP() << "serial verification";
@@ -109,10 +99,7 @@ TEST(Plasticity, PlaneStrainBendingFollowsThePointLaw) {
 
 TEST(Plasticity, CylindricalPanel) {
   const auto dir = work_dir("panel");
-  std::string text = slurp(std::string(SHELLFRAC_SOURCE_DIR) + "/xml/cylindrical_panel.xml");
-  replace(text, "value=\"meshes/", "value=\"" + std::string(SHELLFRAC_SOURCE_DIR) + "/xml/meshes/");
-  replace(text, "<Parameter name=\"Probes\"", "<Parameter name=\"Directory\" type=\"string\" value=\"" + dir +
-                                                  "\"/><Parameter name=\"Probes\"");
+  const std::string text = example_deck("cylindrical_panel.xml", dir);
   write_file(dir + "/panel.xml", text);
   solver::Simulation sim(dir + "/panel.xml");
   sim.run();

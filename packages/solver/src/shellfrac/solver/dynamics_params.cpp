@@ -88,11 +88,12 @@ Teuchos::RCP<const Teuchos::ParameterList> BoundaryCondition::valid_parameters()
                      "directors rotated about Axis by an angle ramped smoothly to Angle over Ramp Time, positions free "
                      "(an end moment without drilling DOFs; math.md §10.1-10.2)",
                      {"Clamped", "Simply Supported", "Symmetry", "Prescribed Velocity", "Prescribed Rotation"});
-  pl->set("Node Set", "x_min", "Name of a node set of the mesh");
+  pl->set("Node Set", "x_min", "Name of a node set of the mesh, or 'all' (every node; with Elements: every node of "
+                               "those elements)");
   pl->set("Elements", "all",
           "Element set or block: the condition acts only on the DG copies of the Node Set's nodes that belong to these "
           "elements; 'all' = every copy. A clamping fixture modelled as part of the mesh (its elements held, the "
-          "edges at its border breakable) uses the fixture's block here");
+          "edges at its border breakable): Node Set = all, Elements = the fixture's block");
   pl->set("Normal", Teuchos::Array<double>(Teuchos::tuple<double>(1.0, 0.0, 0.0)), "Symmetry: normal of the symmetry plane {nx, ny, nz}");
   pl->set("Velocity", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0, 0.0)),
           "Prescribed Velocity: final velocity {vx, vy, vz} [length/time]");

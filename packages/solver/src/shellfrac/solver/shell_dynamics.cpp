@@ -365,11 +365,14 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
                                  [&](const auto& ns) { return ns.name == bc.node_set; });
     std::string names;
     for (const auto& ns : mesh.node_sets) names += " '" + ns.name + "'";
-    SHELLFRAC_INPUT_REQUIRE(it != mesh.node_sets.end(), file << ": boundary condition '" << bc.name << "' names node set '"
-                                                             << bc.node_set << "', which the mesh (" << mesh.source
-                                                             << ") does not have; its node sets:" << names);
-    std::vector<char> member(mesh.num_nodes(), 0);
-    for (GlobalId n : it->nodes) member[n] = 1;
+    const bool every_node = bc.node_set == "all";
+    SHELLFRAC_INPUT_REQUIRE(every_node || it != mesh.node_sets.end(),
+                            file << ": boundary condition '" << bc.name << "' names node set '" << bc.node_set
+                                 << "', which the mesh (" << mesh.source << ") does not have; its node sets:" << names
+                                 << " (or 'all')");
+    std::vector<char> member(mesh.num_nodes(), every_node ? 1 : 0);
+    if (!every_node)
+      for (GlobalId n : it->nodes) member[n] = 1;
     const auto in_elements = element_members("boundary condition '" + bc.name + "' (Elements)", bc.elements);
     for (LocalId le = 0; le < no; ++le)
       for (int A = 0; A < 6; ++A) {
