@@ -97,6 +97,9 @@ Teuchos::RCP<const Teuchos::ParameterList> BoundaryCondition::valid_parameters()
   pl->set("Normal", Teuchos::Array<double>(Teuchos::tuple<double>(1.0, 0.0, 0.0)), "Symmetry: normal of the symmetry plane {nx, ny, nz}");
   pl->set("Velocity", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0, 0.0)),
           "Prescribed Velocity: final velocity {vx, vy, vz} [length/time]");
+  pl->set("Components", "xyz",
+          "Prescribed Velocity: the velocity components that are prescribed, a subset of 'xyz' (e.g. 'z': the nodes "
+          "move freely along x and y, like a clamp that does not resist in-plane motion); the directors stay clamped");
   pl->set("Ramp Time", 0.0, "Prescribed Velocity/Rotation: duration of the cosine ramp from 0 to Velocity/Angle [time]",
           params::non_negative_double());
   pl->set("Axis", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 1.0, 0.0)),
@@ -129,6 +132,11 @@ BoundaryCondition BoundaryCondition::from_parameters(const std::string& name, Te
   if (n > 0)
     for (double& c : bc.normal) c /= n;
   bc.velocity = vec3("Velocity");
+  const std::string comps = pl.get<std::string>("Components");
+  SHELLFRAC_INPUT_REQUIRE(!comps.empty() && comps.find_first_not_of("xyz") == std::string::npos,
+                          ctx.file << ": '" << ctx.path << "->Components' is '" << comps
+                                   << "'; it must be a non-empty subset of 'xyz'");
+  for (int c = 0; c < 3; ++c) bc.components[c] = comps.find(char('x' + c)) != std::string::npos;
   bc.ramp_time = pl.get<double>("Ramp Time");
   bc.axis = vec3("Axis");
   const double na = std::sqrt(bc.axis[0] * bc.axis[0] + bc.axis[1] * bc.axis[1] + bc.axis[2] * bc.axis[2]);

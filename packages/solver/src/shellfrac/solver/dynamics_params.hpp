@@ -2,6 +2,7 @@
 /// \file dynamics_params.hpp
 /// Deck sublists of the explicit shell dynamics (paper §4; math.md §5-8, §10): discretization constants,
 /// time integration, boundary conditions and initial conditions, as plain structs.
+#include <array>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,7 @@ struct BoundaryCondition {
   std::string elements = "all";  ///< only the DG copies of the nodes that belong to these elements (set, block or all)
   Vec3 normal{0, 0, 1};    ///< Symmetry: unit normal of the symmetry plane
   Vec3 velocity{0, 0, 0};  ///< Prescribed Velocity: final velocity V0 (directors clamped on the set)
+  std::array<bool, 3> components{true, true, true};  ///< Prescribed Velocity: which of x, y, z are prescribed
   double ramp_time = 0;    ///< Prescribed Velocity/Rotation: cosine ramp duration t_r (0 = applied at once)
   Vec3 axis{0, 1, 0};      ///< Prescribed Rotation: unit rotation axis
   double angle = 0;        ///< Prescribed Rotation: final angle [rad] reached at the end of the ramp

@@ -149,6 +149,10 @@ struct ShellDynamics::Impl {
   void external_forces(double t);
   Vec3 prescribed_displacement(int bc, double t) const;
   Vec3 prescribed_velocity(int bc, double t) const;
+  /// Whether component c of owned position node i follows a Prescribed Velocity condition.
+  bool prescribed(LocalId i, int c) const {
+    return presc[i] >= 0 && setup.boundary_conditions[presc[i]].components[c];
+  }
   Vec3 prescribed_acceleration(int bc, double t) const;
   void apply_rotations(double t);
   double rotary_kinetic(LocalId le, int b) const {
@@ -525,7 +529,8 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
   for (LocalId i = 0; i < no * 6; ++i)
     if (presc[i] >= 0) {
       const Vec3 pv = prescribed_velocity(presc[i], 0.0);
-      for (int c = 0; c < 3; ++c) v[i * 3 + c] = pv[c];
+      for (int c = 0; c < 3; ++c)
+        if (prescribed(i, c)) v[i * 3 + c] = pv[c];
     }
   apply_rotations(0.0);
   // Start-up: forces and accelerations at t = 0 (math.md §7.4).
@@ -537,18 +542,19 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
     for (int A = 0; A < 6; ++A) {
       const int i = le * 6 + A;
       Vec3 acc{0, 0, 0};
-      if (presc[i] >= 0) {
-        acc = prescribed_acceleration(presc[i], 0.0);
-      } else if (!fixed_x[i]) {
-        for (int c = 0; c < 3; ++c) acc[c] = (fext[i * 3 + c] - f[i * 3 + c]) / mass[i];
-        for (const auto& n : sym_x[i]) {
-          const double an = acc[0] * n[0] + acc[1] * n[1] + acc[2] * n[2];
-          for (int c = 0; c < 3; ++c) acc[c] -= an * n[c];
-        }
+      if (!fixed_x[i]) {
+        const Vec3 pa = presc[i] >= 0 ? prescribed_acceleration(presc[i], 0.0) : Vec3{0, 0, 0};
+        for (int c = 0; c < 3; ++c) acc[c] = prescribed(i, c) ? pa[c] : (fext[i * 3 + c] - f[i * 3 + c]) / mass[i];
+        if (presc[i] < 0)
+          for (const auto& n : sym_x[i]) {
+            const double an = acc[0] * n[0] + acc[1] * n[1] + acc[2] * n[2];
+            for (int c = 0; c < 3; ++c) acc[c] -= an * n[c];
+          }
       }
       for (int c = 0; c < 3; ++c) {
         a[i * 3 + c] = acc[c];
-        react[i * 3 + c] = (fixed_x[i] || presc[i] >= 0) ? mass[i] * acc[c] - fext[i * 3 + c] + f[i * 3 + c] : 0.0;
+        react[i * 3 + c] =
+            (fixed_x[i] || prescribed(i, c)) ? mass[i] * acc[c] - fext[i * 3 + c] + f[i * 3 + c] : 0.0;
       }
     }
     for (int b = 0; b < 3; ++b) {
@@ -848,7 +854,14 @@ void ShellDynamics::step() {
         for (int c = 0; c < 3; ++c) x[c] = s.X[i * 3 + c], v[c] = 0;
       } else if (s.presc[i] >= 0) {  // exact integral of the velocity program: no drift
         const Vec3 u = s.prescribed_displacement(s.presc[i], t1);
-        for (int c = 0; c < 3; ++c) x[c] = s.X[i * 3 + c] + u[c];
+        for (int c = 0; c < 3; ++c) {
+          if (s.prescribed(i, c)) {
+            x[c] = s.X[i * 3 + c] + u[c];
+          } else {  // a free component of a partly prescribed node
+            x[c] += dt * v[c] + 0.5 * dt * dt * s.a[i * 3 + c];
+            v[c] += 0.5 * dt * s.a[i * 3 + c];
+          }
+        }
       } else {
         double dx[3];
         for (int c = 0; c < 3; ++c) {
@@ -898,12 +911,19 @@ void ShellDynamics::step() {
       const int i = le * 6 + A;
       double* v = &s.v[i * 3];
       double* acc = &s.a[i * 3];
-      const bool constrained = s.fixed_x[i] || s.presc[i] >= 0;
       if (s.fixed_x[i]) {
         acc[0] = acc[1] = acc[2] = 0;
       } else if (s.presc[i] >= 0) {
         const Vec3 pa = s.prescribed_acceleration(s.presc[i], t1), pv = s.prescribed_velocity(s.presc[i], t1);
-        for (int c = 0; c < 3; ++c) acc[c] = pa[c], v[c] = pv[c];
+        for (int c = 0; c < 3; ++c) {
+          if (s.prescribed(i, c)) {
+            acc[c] = pa[c], v[c] = pv[c];
+          } else {  // a free component of a partly prescribed node
+            diss += dt * alpha * s.mass[i] * v[c] * v[c];
+            acc[c] = (s.fext[i * 3 + c] - s.f[i * 3 + c] - alpha * s.mass[i] * v[c]) / s.mass[i];
+            v[c] += 0.5 * dt * acc[c];
+          }
+        }
       } else {
         for (int c = 0; c < 3; ++c) {
           diss += dt * alpha * s.mass[i] * v[c] * v[c];
@@ -914,8 +934,8 @@ void ShellDynamics::step() {
       }
       for (int c = 0; c < 3; ++c) {
         const int j = i * 3 + c;
-        // Reaction R = m a - f_ext + f on constrained nodes (math.md §9.7).
-        s.react[j] = constrained ? s.mass[i] * acc[c] - s.fext[j] + s.f[j] : 0.0;
+        // Reaction R = m a - f_ext + f on constrained nodes and components (math.md §9.7).
+        s.react[j] = (s.fixed_x[i] || s.prescribed(i, c)) ? s.mass[i] * acc[c] - s.fext[j] + s.f[j] : 0.0;
         const double dx = s.x[j] - s.x_old[j];
         wext += 0.5 * (s.fext_old[j] + s.fext[j]) * dx;
         wreact += 0.5 * (s.react_old[j] + s.react[j]) * dx;
