@@ -20,6 +20,7 @@
 #include <string>
 
 #include "deck_test_util.hpp"
+#include "cracked_strip.hpp"
 #include "serial_compare.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/mesh/generators.hpp"
@@ -34,50 +35,19 @@ namespace {
 // Seed Table 3 material (6061-T6) with Gamma = 10 kJ/m^2, V = 20 m/s: benchmarks.md §5.2 example
 // (c0 = 5058 m/s, Z = 1.362e7 Pa s/m, 2 Z V = 545 MPa > sigma_c = 375 MPa, delta_c = 53.3 um, t_sep - t0 = 1.13 us).
 constexpr double E = 68.9e9, rho = 2693, sigma_c = 375e6, Gamma = 10e3, V = 20;
-constexpr double L = 0.05, b = 0.001, h = 0.001;
-constexpr int cells = 100;  // along 2L: 1 mm elements
+constexpr double L = strip_L, b = strip_b, h = strip_h;
 
-/// Writes the strip mesh: Rectangle [0, 2L] x [0, b], node sets "crack" (x = L) and "quarter" (x = L/2), side
-/// set "crack" (the edges at x = L, from the left elements).
+/// Writes the strip mesh on rank 0 (cracked_strip.hpp). Collective.
 void write_strip(const std::string& path) {
-  auto m = mesh::make_rectangle(2 * L, b, cells, 1, mesh::DiagonalPattern::Right);
-  mesh::NodeSet crack{"crack", 10, {}}, quarter{"quarter", 11, {}};
-  for (GlobalId n = 0; n < m.num_nodes(); ++n) {
-    if (std::abs(m.coords[n][0] - L) < 1e-9) crack.nodes.push_back(n);
-    if (std::abs(m.coords[n][0] - L / 2) < 1e-9) quarter.nodes.push_back(n);
-  }
-  mesh::SideSet edges{"crack", 10, {}, {}};
-  for (GlobalId e = 0; e < m.num_elements(); ++e)
-    for (int k = 0; k < 3; ++k) {
-      const auto& a = m.coords[m.node(e, k)];
-      const auto& c = m.coords[m.node(e, (k + 1) % 3)];
-      const auto& o = m.coords[m.node(e, (k + 2) % 3)];
-      if (std::abs(a[0] - L) < 1e-9 && std::abs(c[0] - L) < 1e-9 && o[0] < L) {
-        edges.elements.push_back(e);
-        edges.local_edges.push_back(k);
-      }
-    }
-  m.node_sets.push_back(crack);
-  m.node_sets.push_back(quarter);
-  m.side_sets.push_back(edges);
-  mesh::promote_to_p2(m);
-  if (parallel::rank() == 0) meshio::write_exodus_mesh(m, path);
+  if (parallel::rank() == 0) write_cracked_strip(path);
   MPI_Barrier(MPI_COMM_WORLD);
 }
 
 std::string strip_deck(const std::string& dir, double strength) {
   const std::string body =
       "<ParameterList name=\"Time Integration\"><Parameter name=\"End Time\" type=\"double\" value=\"14e-6\"/>"
-      "</ParameterList>\n"
-      "<ParameterList name=\"Fracture\"><Parameter name=\"Edges\" type=\"string\" value=\"crack\"/></ParameterList>\n"
-      "<ParameterList name=\"Boundary Conditions\">"
-      "<ParameterList name=\"left\"><Parameter name=\"Type\" type=\"string\" value=\"Prescribed Velocity\"/>"
-      "<Parameter name=\"Node Set\" type=\"string\" value=\"x_min\"/>"
-      "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{-20.0, 0.0, 0.0}\"/></ParameterList>"
-      "<ParameterList name=\"right\"><Parameter name=\"Type\" type=\"string\" value=\"Prescribed Velocity\"/>"
-      "<Parameter name=\"Node Set\" type=\"string\" value=\"x_max\"/>"
-      "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{20.0, 0.0, 0.0}\"/></ParameterList>"
-      "</ParameterList>\n";
+      "</ParameterList>\n" +
+      pulled_strip_conditions();
   const std::string mesh_xml =
       "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"File\"/>"
       "<Parameter name=\"File\" type=\"string\" value=\"strip_mesh.exo\"/></ParameterList>\n";

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <string>
 
+#include "cracked_strip.hpp"
 #include "deck_test_util.hpp"
 #include "shellfrac/io/exodus_results.hpp"
 #include "shellfrac/mesh/generators.hpp"
@@ -21,7 +22,7 @@ using namespace shellfrac::test;
 
 namespace {
 
-constexpr double L = 0.05, b = 0.001, h = 0.001;
+constexpr double h = strip_h;
 
 std::string strip_deck(const std::string& dir, const std::string& end_time) {
   const std::string body =
@@ -29,15 +30,7 @@ std::string strip_deck(const std::string& dir, const std::string& end_time) {
       "\"/><Parameter name=\"History Interval\" type=\"int\" value=\"5\"/>"
       "<Parameter name=\"Output Interval\" type=\"double\" value=\"3.5e-6\"/></ParameterList>\n"
       "<ParameterList name=\"Checkpoint\"><Parameter name=\"Step Interval\" type=\"int\" value=\"100000\"/></ParameterList>\n"
-      "<ParameterList name=\"Fracture\"><Parameter name=\"Edges\" type=\"string\" value=\"crack\"/></ParameterList>\n"
-      "<ParameterList name=\"Boundary Conditions\">"
-      "<ParameterList name=\"left\"><Parameter name=\"Type\" type=\"string\" value=\"Prescribed Velocity\"/>"
-      "<Parameter name=\"Node Set\" type=\"string\" value=\"x_min\"/>"
-      "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{-20.0, 0.0, 0.0}\"/></ParameterList>"
-      "<ParameterList name=\"right\"><Parameter name=\"Type\" type=\"string\" value=\"Prescribed Velocity\"/>"
-      "<Parameter name=\"Node Set\" type=\"string\" value=\"x_max\"/>"
-      "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{20.0, 0.0, 0.0}\"/></ParameterList>"
-      "</ParameterList>\n";
+      + pulled_strip_conditions();
   const std::string mesh_xml =
       "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"File\"/>"
       "<Parameter name=\"File\" type=\"string\" value=\"../strip_mesh.exo\"/></ParameterList>\n";
@@ -50,22 +43,6 @@ std::string strip_deck(const std::string& dir, const std::string& end_time) {
                "<Parameter name=\"Cohesive Strength\" type=\"double\" value=\"375e6\"/>"
                "<Parameter name=\"Fracture Energy\" type=\"double\" value=\"10e3\"/>");
   return text;
-}
-
-void write_strip(const std::string& path) {
-  auto m = mesh::make_rectangle(2 * L, b, 100, 1, mesh::DiagonalPattern::Right);
-  mesh::SideSet edges{"crack", 10, {}, {}};
-  for (GlobalId e = 0; e < m.num_elements(); ++e)
-    for (int k = 0; k < 3; ++k) {
-      const auto& p = m.coords[m.node(e, k)];
-      const auto& q = m.coords[m.node(e, (k + 1) % 3)];
-      const auto& o = m.coords[m.node(e, (k + 2) % 3)];
-      if (std::abs(p[0] - L) < 1e-9 && std::abs(q[0] - L) < 1e-9 && o[0] < L)
-        edges.elements.push_back(e), edges.local_edges.push_back(k);
-    }
-  m.side_sets.push_back(edges);
-  mesh::promote_to_p2(m);
-  meshio::write_exodus_mesh(m, path);
 }
 
 /// Runs the strip to 14 us in `dir` on `comm` without a break (the reference).
@@ -133,7 +110,7 @@ std::string fresh(const std::string& dir) {
 
 TEST(Restart, ContinuesBitwiseThroughCrackActivation) {
   const auto root = work_dir("restart");
-  if (parallel::rank() == 0) write_strip(root + "/strip_mesh.exo");
+  if (parallel::rank() == 0) write_cracked_strip(root + "/strip_mesh.exo");
   const auto ref = fresh(root + "/continuous"), same = fresh(root + "/same_ranks");
   continuous(ref, MPI_COMM_WORLD);
   broken_run(same, MPI_COMM_WORLD, MPI_COMM_WORLD);
