@@ -386,9 +386,13 @@ RunSummary Simulation::run() {
     crack_csv = restarted ? std::make_unique<io::HistoryWriter>(cracks_path(), ShellDynamics::crack_event_columns(),
                                                                 double(summary_.restart_step), comm_)
                           : std::make_unique<io::HistoryWriter>(cracks_path(), ShellDynamics::crack_event_columns(), comm_);
-  auto write_cracks = [&] {
-    if (crack_csv)
-      for (const auto& row : dyn.crack_events()) crack_csv->write_row(row);
+  // The log is gathered only when the global count of activated edges has changed since it was last written (the
+  // history record carries that count), so steps without activation cost no extra collective.
+  GlobalId cracks_logged = -1;
+  auto write_cracks = [&](GlobalId activated) {
+    if (!crack_csv || activated == cracks_logged) return;
+    for (const auto& row : dyn.crack_events()) crack_csv->write_row(row);
+    cracks_logged = activated;
   };
   auto write_output = [&](bool fragment_rows = true) {
     if (fragment_csv && fragment_rows)
@@ -407,7 +411,7 @@ RunSummary Simulation::run() {
   const auto& ck = deck_.checkpoint;
   const bool checkpointing = ck.step_interval > 0 || ck.wall_minutes > 0;
   auto write_checkpoint = [&] {
-    write_cracks();  // the crack log is complete through the checkpoint's step (a restart keeps those rows)
+    write_cracks(dyn.record().cohesive_edges);  // complete through the checkpoint's step (a restart keeps those rows)
     auto data = dyn.checkpoint();
     data.scalars["e0"] = e0;
     data.strings["deck"] = deck_.file;
@@ -430,7 +434,7 @@ RunSummary Simulation::run() {
     for (double f : dyn.reactions()) row.push_back(f);
     for (double l : r.angular_momentum) row.push_back(l);
     history.write_row(row);
-    write_cracks();
+    write_cracks(r.cohesive_edges);
   };
   const auto& tp = deck_.time;
   const double output_step = tp.output_interval > 0 ? tp.output_interval : tp.end_time;
@@ -500,7 +504,7 @@ RunSummary Simulation::run() {
                     history_path()};
   if (checkpointing || summary_.stopped_by_signal) summary_.files.push_back(checkpoint_path());
   if (dynamics_->fracture()) {
-    write_cracks();
+    write_cracks(dyn.record().cohesive_edges);
     summary_.files.push_back(fragments_path());
     summary_.files.push_back(cracks_path());
   }
