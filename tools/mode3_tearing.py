@@ -15,7 +15,10 @@ DIR/mode3_tearing_F_delta.png (force curves and crack length), and prints per Ga
 mean force over Delta/h in [--steady-from, --steady-to] (the paper's steady state), the mean force over the
 propagation phase (from the first to the last separated ligament edge) and its Delta/h range, the crack length at
 Delta/h = 10 (separated ligament edges x edge length), the cohesive dissipation against Gamma h x crack length, the
-energy balance error max |error| / input work, and the wall time.
+energy balance error max |error| / input work, and the wall time; then for the steady-state window: the mean force
+and its values at both ends, the crack growth per unit Delta, the tearing resistance R (plastic work + cohesive
+dissipation per unit crack area) and how the separated flanks open (the out-of-plane share of the jump, from the
+Exodus file).
 
 usage: mode3_tearing.py [--np N] [--jobs J] [--out DIR] [--decks D1.xml ...] [--no-run]
                         [--delta clamp|relative] [--force top|mean] [--steady-from 4 --steady-to 10]
@@ -36,7 +39,9 @@ import numpy as np  # noqa: E402
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
+from netCDF4 import Dataset  # noqa: E402
 from plot_history import column, read_history  # noqa: E402
+from plot_results import names  # noqa: E402
 
 BINARY = os.path.join(ROOT, "build", "apps", "shellfrac", "shellfrac")
 MPI_ENV = os.path.join(ROOT, "tools", "mpi-env.sh")
@@ -68,12 +73,14 @@ def deck_params(deck):
         "h": float(par(block, "Thickness")),
         "Y0": float(par(mat, "Yield Stress")),
         "Gamma": float(par(mat, "Fracture Energy")),
+        "sigma_c": float(par(mat, "Cohesive Strength")),
         "mesh": os.path.join(os.path.dirname(os.path.abspath(deck)), mesh),
     }
 
 
 def curve_edges(msh, name):
-    """Number and mean length of the line elements of the physical curve `name` in an ASCII Gmsh 4.1 file."""
+    """Number and mean length of the line elements of the physical curve `name` in an ASCII Gmsh 4.1 file, and the
+    smallest x of their vertices (for the ligament: the notch tip)."""
     lines = open(msh).read().split("\n")
     i = lines.index("$PhysicalNames")
     tag = None
@@ -102,15 +109,16 @@ def curve_edges(msh, name):
         k += 1 + 2 * n
     i = lines.index("$Elements")
     nb = int(lines[i + 1].split()[0])
-    k, lengths = i + 2, []
+    k, lengths, xmin = i + 2, [], np.inf
     for _ in range(nb):
         dim, ent, _typ, n = map(int, lines[k].split())
         if dim == 1 and ent in curves:
             for ln in lines[k + 1:k + 1 + n]:
                 v = list(map(int, ln.split()))
                 lengths.append(np.linalg.norm(xyz[v[2]] - xyz[v[1]]))
+                xmin = min(xmin, xyz[v[1]][0], xyz[v[2]][0])
         k += 1 + n
-    return len(lengths), float(np.mean(lengths))
+    return len(lengths), float(np.mean(lengths)), float(xmin)
 
 
 def run_deck(deck, out, np_):
@@ -144,6 +152,32 @@ def run_all(decks, out, np_, jobs):
                 print(f"  {name}: {wall:.0f} s", flush=True)
 
 
+def flank_jumps(exo, x_tip, h, delta_of_t, delta_at):
+    """Opening of the crack flanks at the Exodus frame nearest to Delta/h = delta_at: for every ligament vertex
+    (y = 0, x >= x_tip) the displacement jump between the copies of the elements above (y > 0) and below; returns
+    (Delta/h of the frame, x [m], jump [m] as an (n, 3) array), or None when the file has no displacements."""
+    with Dataset(exo) as d:
+        nod = names(d, "name_nod_var")
+        t = d.variables["time_whole"][:]
+        if "displ_x" not in nod or len(t) == 0:
+            return None
+        fr = int(np.argmin(np.abs(delta_of_t(t) / h - delta_at)))
+        xyz = np.stack([d.variables[c][:] for c in ("coordx", "coordy", "coordz")], axis=1)
+        u = np.stack([d.variables["vals_nod_var%d" % (nod.index("displ_" + c) + 1)][fr, :] for c in "xyz"], axis=1)
+        conn = d.variables["connect1"][:] - 1
+    above, below = {}, {}
+    tol = 1e-9 * max(1.0, float(np.abs(xyz).max()))
+    for c in conn:
+        side = above if xyz[c, 1].mean() > 0 else below
+        for n in c:
+            if abs(xyz[n, 1]) <= tol and xyz[n, 0] >= x_tip - tol:
+                side.setdefault(round(xyz[n, 0] / tol), n)
+    keys = sorted(set(above) & set(below))
+    x = np.array([xyz[above[k], 0] for k in keys])
+    jump = np.array([u[above[k]] - u[below[k]] for k in keys])
+    return delta_of_t(t[fr]) / h, x, jump
+
+
 def analyse(deck, out, delta_kind, force_kind, steady):
     name = os.path.splitext(os.path.basename(deck))[0]
     prm = deck_params(deck)
@@ -159,10 +193,11 @@ def analyse(deck, out, delta_kind, force_kind, steady):
     fbot = column(hist, "clamp_bottom_reaction_z", path)
     force = 0.5 * (ftop - fbot) if force_kind == "mean" else ftop
     fn, dn = force / norm, delta / h
-    nlig, le = curve_edges(prm["mesh"], "ligament")
+    nlig, le, x_tip = curve_edges(prm["mesh"], "ligament")
     nsep = column(hist, "num_separated_edges", path)
     ncoh = column(hist, "num_cohesive_edges", path)
     win = (dn >= steady[0]) & (dn <= steady[1])
+    crack = nsep * le
     upto = dn <= DELTA_MAX + 1e-9
     ipk = int(np.argmax(np.where(upto, fn, -np.inf)))
     wr = column(hist, "reaction_work", path)
@@ -176,12 +211,36 @@ def analyse(deck, out, delta_kind, force_kind, steady):
     isep = int(np.argmax(nsep > 0)) if nsep[iend] > 0 else None
     ilast = int(np.argmax(nsep >= nsep[iend])) if isep is not None else None
     prop = fn[isep:ilast + 1] if isep is not None else np.array([])
+    # the steady-state window: crack growth per Delta (least squares) and the dissipation per unit crack advance
+    # (plastic work + cohesive dissipation) / (h x advance), i.e. the tearing resistance R of the window
+    wp = column(hist, "plastic_dissipation", path)
+    iw = np.nonzero(win & (dn <= DELTA_MAX + 1e-9))[0]
+    grow, resist = float("nan"), float("nan")
+    if iw.size > 1:
+        grow = float(np.polyfit(dn[iw] * h, crack[iw], 1)[0])
+        da = crack[iw[-1]] - crack[iw[0]]
+        if da > 0:
+            resist = ((wp[iw[-1]] + dcoh[iw[-1]]) - (wp[iw[0]] + dcoh[iw[0]])) / (h * da)
+    # how the separated flanks open: the out-of-plane (z) share of the jump where it exceeds 2 Gamma / sigma_c
+    # (the opening at complete separation), at the end of the Fig. 13 range
+    mode3 = float("nan")
+    exo = os.path.join(out, f"{name}.exo")
+    if os.path.exists(exo):
+        fj = flank_jumps(exo, x_tip, h, lambda tt: np.interp(tt, t, delta), DELTA_MAX)
+        if fj is not None:
+            _, _, jump = fj
+            mag = np.linalg.norm(jump, axis=1)
+            sep = mag >= 2.0 * prm["Gamma"] / prm["sigma_c"]
+            if sep.any():
+                mode3 = float(np.mean(np.abs(jump[sep, 2]) / mag[sep]))
     return {
         "name": name, "Gamma": prm["Gamma"], "Gamma_rel": prm["Gamma"] / (y0 * h), "h": h,
         "t": t, "delta_h": dn, "F": fn, "ncoh": ncoh, "nsep": nsep, "edge": le, "nlig": nlig,
         "peak": fn[ipk], "peak_at": dn[ipk],
         "steady": float(np.mean(fn[win])) if win.any() else float("nan"),
         "steady_std": float(np.std(fn[win])) if win.any() else float("nan"),
+        "steady_first": fn[iw[0]] if iw.size else float("nan"), "steady_last": fn[iw[-1]] if iw.size else float("nan"),
+        "growth": grow, "resistance": resist, "mode3_share": mode3, "Y0h": y0 * h,
         "crack_end": nsep[iend] * le, "cohesive_end": ncoh[iend] * le, "nsep_end": int(nsep[iend]),
         "delta_end": dn[iend], "first_sep_at": dn[isep] if isep is not None else float("nan"),
         "last_sep_at": dn[ilast] if isep is not None else float("nan"),
@@ -250,7 +309,7 @@ def main():
     ax2.set_ylabel("crack length [mm]")
     ax2.set_xlabel(dlabel)
     ax2.grid(True, alpha=0.3)
-    ax2.legend(fontsize=7, loc="center right")
+    ax2.legend(fontsize=7, loc="upper left")
     fig.tight_layout()
     png = os.path.join(a.out, "mode3_tearing_F_delta.png")
     fig.savefig(png, dpi=150)
@@ -274,6 +333,17 @@ def main():
           f"{res[0]['nlig']} edges) at Delta/h = {res[0]['delta_end']:.2f}; Dcoh/Gha = cohesive dissipation / "
           f"(Gamma h crack), > 1 by partly opened edges; err/W = max |energy_balance_error| / reaction work W_in; "
           f"Wp = plastic work")
+    print(f"\nsteady-state window Delta/h in [{a.steady_from:g}, {a.steady_to:g}]:")
+    print(f"{'deck':<28}{'G/Y0h':>6}{'mean F':>8}{'(std)':>7}{'F first':>8}{'F last':>8}{'da/dDelta':>10}"
+          f"{'R/(Y0h)':>9}{'R/Gamma':>8}{'z share':>8}")
+    for r in res:
+        print(f"{r['name']:<28}{r['Gamma_rel']:>6.2f}{r['steady']:>8.4f}{r['steady_std']:>7.4f}"
+              f"{r['steady_first']:>8.4f}{r['steady_last']:>8.4f}{r['growth']:>10.2f}"
+              f"{r['resistance'] / r['Y0h']:>9.3f}{r['resistance'] / r['Gamma']:>8.2f}{r['mode3_share']:>8.2f}")
+    print("mean F (std) = F/(Y0 h b) over the window, F first/last = at its ends; da/dDelta = crack growth per "
+          "unit Delta (least squares); R = (plastic work + cohesive dissipation) / (h x crack advance) in the window, "
+          "the tearing resistance; z share = mean |jump_z| / |jump| of the crack flanks where the jump exceeds "
+          "2 Gamma / sigma_c (complete separation), at Delta/h = 10 (1 = pure out-of-plane sliding, mode III)")
     print(f"wrote {csv}\nwrote {png}")
     return 0
 

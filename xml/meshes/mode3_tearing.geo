@@ -6,14 +6,19 @@
 //   * the notch is a 1 mm wide slit centred on y = 0 from the free edge x = 0 to x = a = 76.2 - 33.1 = 43.1 mm;
 //     its last 1 mm is a taper that closes it to a sharp tip at (a, 0) (a square end would put 0.5 mm edges there
 //     and halve the stable time step); the ligament is the line y = 0, x in [43.1, 76.2] mm (33.1 mm);
-//   * the meshed free band between the clamps is 28.6 mm high (y in [-14.3, 14.3] mm); the 63.5 mm is the total
-//     height of the specimen including the clamped strips, which are not meshed (paper: "the parts of the plate
-//     fixed within the clamps ... is not meshed"), so the clamps act on the lines y = +-14.3 mm.
+//   * the meshed band is 28.6 mm high (y in [-14.3, 14.3] mm); the 63.5 mm is the total height of the specimen
+//     including the clamped strips, which are not meshed (paper: "the parts of the plate fixed within the clamps
+//     ... is not meshed");
+//   * "the halves of the plate above and below the notch are clamped" (paper §6.2): the clamps act on the lines
+//     y = +-14.3 mm over the notch, x in [0, a] (curves clamp_top, clamp_bottom); the band edges ahead of the notch
+//     tip, x in [a, W], are free. The curves clamp_top_full and clamp_bottom_full (x in [0, W]) serve the other
+//     reading, clamps over the full width (deck mode3_tearing_fullwidth_G050.xml; docs/mode3_tearing.md).
 // The mesh is aligned with the crack path: the two halves (above and below the slit) are separate surfaces that
 // share the ligament line, which has 22 equal edges (1.5045 mm). The size grows from lc0 = 1.5 mm at the ligament and
-// the slit tip to 3 mm away from it (944 TRI6). lc0 = 1 mm (33 edges) would be the finer choice, but costs about
+// the slit tip to 3 mm away from it (948 TRI6). lc0 = 1 mm (33 edges) would be the finer choice, but costs about
 // 3.5x more (more elements, and a 2.4x smaller time step): see docs/mode3_tearing.md.
-// Physical groups: surface "plate" (block); curves "clamp_top" (y = +14.3 mm), "clamp_bottom" (y = -14.3 mm),
+// Physical groups: surface "plate" (block); curves "clamp_top" (y = +14.3 mm, x <= a), "clamp_bottom" (y = -14.3 mm,
+// x <= a), "clamp_top_full" and "clamp_bottom_full" (the same lines over the full width),
 // "ligament" (interior line: side set with both adjacent triangles, and node set); point "notch_tip" (x = a, y = 0).
 // Regenerate (from xml/meshes):
 //   gmsh mode3_tearing.geo -2 -order 2 -format msh41 -o mode3_tearing.msh   (Gmsh 4.8.4)
@@ -41,30 +46,34 @@ Point(9) = {0, -H, 0, lc1};
 Point(10) = {W, -H, 0, lc1};
 Point(11) = {a - t - f, s, 0, lc0};   // the last f of the slit faces get uniform edges of about lc0
 Point(12) = {a - t - f, -s, 0, lc0};
+Point(13) = {a, H, 0, lc1};       // end of the top clamp, above the notch tip
+Point(14) = {a, -H, 0, lc1};      // end of the bottom clamp
 
 Line(1) = {1, 2};                 // ligament (shared by both halves)
 Transfinite Curve{1} = nlig + 1;
 // upper half, counter-clockwise (normal +z)
 Line(2) = {2, 6};
-Line(3) = {6, 5};                 // clamp_top
+Line(14) = {6, 13};               // top edge ahead of the notch tip (free)
+Line(3) = {13, 5};                // clamp_top (above the notch)
 Line(4) = {5, 4};
 Line(5) = {4, 11};                // upper slit face
 Line(12) = {11, 3};               // upper slit face, last f before the taper
 Line(6) = {3, 1};                 // upper taper face
 Transfinite Curve{12} = Round(f / lc0) + 1;
 Transfinite Curve{6} = Ceil(Sqrt(t * t + s * s) / lc0) + 1;
-Curve Loop(1) = {1, 2, 3, 4, 5, 12, 6};
+Curve Loop(1) = {1, 2, 14, 3, 4, 5, 12, 6};
 Plane Surface(1) = {1};
 // lower half, counter-clockwise (normal +z)
 Line(7) = {1, 7};                 // lower taper face
 Line(13) = {7, 12};               // lower slit face, last f before the taper
 Line(8) = {12, 8};                // lower slit face
 Line(9) = {8, 9};
-Line(10) = {9, 10};               // clamp_bottom
+Line(10) = {9, 14};               // clamp_bottom (below the notch)
+Line(15) = {14, 10};              // bottom edge ahead of the notch tip (free)
 Line(11) = {10, 2};
 Transfinite Curve{13} = Round(f / lc0) + 1;
 Transfinite Curve{7} = Ceil(Sqrt(t * t + s * s) / lc0) + 1;
-Curve Loop(2) = {7, 13, 8, 9, 10, 11, -1};
+Curve Loop(2) = {7, 13, 8, 9, 10, 15, 11, -1};
 Plane Surface(2) = {2};
 
 // size field: lc0 within 1 mm of the ligament and the slit tip, growing linearly to lc1 at 10 mm
@@ -87,3 +96,5 @@ Physical Curve("clamp_top", 1) = {3};
 Physical Curve("clamp_bottom", 2) = {10};
 Physical Curve("ligament", 3) = {1};
 Physical Point("notch_tip", 4) = {1};
+Physical Curve("clamp_top_full", 5) = {3, 14};
+Physical Curve("clamp_bottom_full", 6) = {10, 15};
