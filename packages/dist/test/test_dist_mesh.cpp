@@ -155,6 +155,43 @@ TEST(DistributedMesh, ImportFillsGhostsFromOwners) {
   }
 }
 
+TEST(DistributedMesh, GhostImportMovesOnlyTheSendRows) {
+  // The per-step transfer: only the owned rows that another rank holds as a ghost are filled (the others hold a
+  // poison value), and every ghost row still receives its owner's value. send_rows are exactly the owned elements
+  // with a neighbour across an interface on another rank (the one ghost layer), so nothing moves at np = 1.
+  for (const auto& c : cases()) {
+    DistributedMesh dm(c.mesh, c.topo, c.part);
+    const auto& maps = dm.maps();
+    constexpr int ncols = 2;
+    auto f = [](GlobalId gid, int j) { return 100.0 * static_cast<double>(j + 1) + 0.5 * static_cast<double>(gid); };
+    std::vector<LocalId> expected;
+    for (LocalId le = 0; le < dm.num_owned(); ++le)
+      for (int k = 0; k < 3; ++k)
+        if (dm.neighbor(le, k) >= dm.num_owned()) {
+          expected.push_back(le);
+          break;
+        }
+    EXPECT_EQ(maps.send_rows, expected) << c.name;
+    if (parallel::size() == 1) {
+      EXPECT_TRUE(maps.send_rows.empty()) << c.name;
+    }
+    ASSERT_EQ(static_cast<LocalId>(maps.ghosts->getNodeNumElements()), dm.num_ghosts()) << c.name;
+    dist::multivector_type owned(maps.owned, ncols), ghosts(maps.ghosts, ncols);
+    owned.putScalar(-7.0);
+    {
+      auto v = owned.getLocalViewHost(Tpetra::Access::ReadWrite);
+      for (const LocalId le : maps.send_rows)
+        for (int j = 0; j < ncols; ++j) v(le, j) = f(dm.element_gid(le), j);
+    }
+    ghosts.putScalar(-1.0);
+    ghosts.doImport(owned, *maps.ghost_importer, Tpetra::INSERT);
+    auto v = ghosts.getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (LocalId r = 0; r < dm.num_ghosts(); ++r)
+      for (int j = 0; j < ncols; ++j)
+        EXPECT_EQ(v(r, j), f(dm.element_gid(dm.num_owned() + r), j)) << c.name << " ghost row " << r;
+  }
+}
+
 TEST(DistributedMesh, ExportAddSumsGhostContributions) {
   for (const auto& c : cases()) {
     DistributedMesh dm(c.mesh, c.topo, c.part);

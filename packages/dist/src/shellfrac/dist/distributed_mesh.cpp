@@ -29,9 +29,11 @@ std::uint64_t hash_partition(const std::vector<int>& part) {
   return h;
 }
 
-Teuchos::ArrayView<const tpetra_go> view_of(const std::vector<tpetra_go>& v, std::size_t n) {
+/// The n entries of v from `first` on (an empty view when n = 0: no pointer into an empty vector).
+Teuchos::ArrayView<const tpetra_go> view_of(const std::vector<tpetra_go>& v, std::size_t first, std::size_t n) {
   if (n == 0) return Teuchos::ArrayView<const tpetra_go>();
-  return Teuchos::ArrayView<const tpetra_go>(v.data(), static_cast<Teuchos::ArrayView<const tpetra_go>::size_type>(n));
+  return Teuchos::ArrayView<const tpetra_go>(v.data() + first,
+                                             static_cast<Teuchos::ArrayView<const tpetra_go>::size_type>(n));
 }
 
 }  // namespace
@@ -152,11 +154,20 @@ DistributedMesh::DistributedMesh(const mesh::SerialMesh& mesh, const mesh::EdgeT
   const std::vector<tpetra_go> gids(element_gid_.begin(), element_gid_.end());
   maps_ = std::make_unique<ElementMaps>();
   maps_->owned = Teuchos::rcp(new map_type(static_cast<Tpetra::global_size_t>(ne),
-                                           view_of(gids, static_cast<std::size_t>(num_owned_)), tpetra_go(0), tcomm));
+                                           view_of(gids, 0, static_cast<std::size_t>(num_owned_)), tpetra_go(0), tcomm));
   maps_->overlap = Teuchos::rcp(new map_type(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
-                                             view_of(gids, gids.size()), tpetra_go(0), tcomm));
+                                             view_of(gids, 0, gids.size()), tpetra_go(0), tcomm));
   maps_->importer = Teuchos::rcp(new import_type(maps_->owned, maps_->overlap));
   maps_->exporter = Teuchos::rcp(new export_type(maps_->overlap, maps_->owned));
+  const std::size_t nghost = gids.size() - static_cast<std::size_t>(num_owned_);
+  maps_->ghosts = Teuchos::rcp(new map_type(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                            view_of(gids, static_cast<std::size_t>(num_owned_), nghost), tpetra_go(0),
+                                            tcomm));
+  maps_->ghost_importer = Teuchos::rcp(new import_type(maps_->owned, maps_->ghosts));
+  const auto sent = maps_->ghost_importer->getExportLIDs();
+  maps_->send_rows.assign(sent.begin(), sent.end());
+  std::sort(maps_->send_rows.begin(), maps_->send_rows.end());
+  maps_->send_rows.erase(std::unique(maps_->send_rows.begin(), maps_->send_rows.end()), maps_->send_rows.end());
 }
 
 DistributedMesh::~DistributedMesh() = default;

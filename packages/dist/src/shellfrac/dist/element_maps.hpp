@@ -1,14 +1,17 @@
 #pragma once
 /// \file element_maps.hpp
 /// Tpetra side of the distributed mesh (heavy header: include only where Tpetra objects are used).
-/// Element rows: `owned` is one-to-one; `overlap` = owned GIDs first then ghosts (the one ghost layer).
-/// Data flow every step (style-anchors §10.7): owned -> Import(INSERT) -> overlap -> kernels ->
-/// Export(ADD) -> owned.
+/// Element rows: `owned` is one-to-one; `overlap` = owned GIDs first then ghosts (the one ghost layer);
+/// `ghosts` = the ghost GIDs alone, in the overlap's order.
+/// Data flow every step (style-anchors §10.7): owned -> Import(INSERT) -> ghosts -> kernels. The per-step
+/// transfers use `ghost_importer`, so that only the rows other ranks hold as ghosts (`send_rows`) are packed and
+/// only the ghost rows are received: the owned rows are never copied (at np = 1 nothing moves at all).
 #include <Tpetra_Export.hpp>
 #include <Tpetra_Import.hpp>
 #include <Tpetra_Map.hpp>
 #include <Tpetra_MultiVector.hpp>
 #include <type_traits>
+#include <vector>
 
 #include "shellfrac/core/types.hpp"
 
@@ -31,6 +34,9 @@ struct ElementMaps {
   Teuchos::RCP<const map_type> overlap;  ///< owned then ghosts
   Teuchos::RCP<const import_type> importer;  ///< owned -> overlap (ghost values from their owners)
   Teuchos::RCP<const export_type> exporter;  ///< overlap -> owned (ADD ghost contributions to owners)
+  Teuchos::RCP<const map_type> ghosts;       ///< the ghosts only: overlap rows num_owned.. in the same order
+  Teuchos::RCP<const import_type> ghost_importer;  ///< owned -> ghosts (remote rows only, no same/permute rows)
+  std::vector<LocalId> send_rows;  ///< owned rows that another rank holds as a ghost (sorted, unique)
 };
 
 }  // namespace shellfrac::dist

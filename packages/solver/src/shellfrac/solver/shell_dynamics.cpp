@@ -128,8 +128,8 @@ struct ShellDynamics::Impl {
   std::vector<disc::DgInterfaceRef> iref;
   std::vector<double> ibeta_x, ibeta_t, fi, gi, energy_i;
   std::vector<std::vector<std::pair<int, int>>> incident;  // owned element -> (local interface, side 0 = minus)
-  // Tpetra transfer buffers
-  Teuchos::RCP<dist::multivector_type> state_own, state_ov, flux_own, flux_ov;
+  // Tpetra transfer buffers: owned rows (only the send rows are filled) and ghost rows
+  Teuchos::RCP<dist::multivector_type> state_own, state_ghost, flux_own, flux_ghost;
   double dt_stable = 0, dt = 0, time = 0;
   long step = 0;
   PhaseTimes times;
@@ -522,9 +522,9 @@ ShellDynamics::Impl::Impl(const mesh::SerialMesh& mesh, const dist::DistributedM
   f.resize(no * nx), g.resize(no * nt), energy_e.resize(no), flux.assign(nov * nflux_cols, 0.0);
   const auto& maps = dm.maps();
   state_own = Teuchos::rcp(new dist::multivector_type(maps.owned, nstate));
-  state_ov = Teuchos::rcp(new dist::multivector_type(maps.overlap, nstate));
+  state_ghost = Teuchos::rcp(new dist::multivector_type(maps.ghosts, nstate));
   flux_own = Teuchos::rcp(new dist::multivector_type(maps.owned, nflux_cols));
-  flux_ov = Teuchos::rcp(new dist::multivector_type(maps.overlap, nflux_cols));
+  flux_ghost = Teuchos::rcp(new dist::multivector_type(maps.ghosts, nflux_cols));
   // Prescribed velocities at t = 0.
   for (LocalId i = 0; i < no * 6; ++i)
     if (presc[i] >= 0) {
@@ -603,24 +603,36 @@ class ScopedTimer {
   double& total_;
   std::chrono::steady_clock::time_point start_;
 };
+
+/// Owned rows -> ghost rows (Import, INSERT: no arithmetic, deterministic). pack(view, le) writes the owned row le
+/// of `own`; it is called only for the rows another rank holds as a ghost (maps.send_rows). unpack(view, r, le)
+/// reads row r of `ghost` into the ghost element le = num_owned + r. The owned rows themselves never move.
+template <class Pack, class Unpack>
+void import_ghost_rows(const dist::ElementMaps& maps, LocalId num_owned, dist::multivector_type& own,
+                       dist::multivector_type& ghost, Pack&& pack, Unpack&& unpack) {
+  {
+    auto s = own.getLocalViewHost(Tpetra::Access::ReadWrite);
+    for (const LocalId le : maps.send_rows) pack(s, le);
+  }
+  ghost.doImport(own, *maps.ghost_importer, Tpetra::INSERT);
+  auto s = ghost.getLocalViewHost(Tpetra::Access::ReadOnly);
+  const auto ng = static_cast<LocalId>(ghost.getLocalLength());
+  for (LocalId r = 0; r < ng; ++r) unpack(s, r, num_owned + r);
+}
 }  // namespace
 
 void ShellDynamics::Impl::sync_state() {
   ScopedTimer timer(times.exchange);
-  // Owned rows -> ghost rows of the overlap arrays (Import, INSERT: no arithmetic, deterministic).
-  {
-    auto s = state_own->getLocalViewHost(Tpetra::Access::OverwriteAll);
-    for (LocalId le = 0; le < no; ++le) {
-      for (int i = 0; i < nx; ++i) s(le, i) = x[le * nx + i];
-      for (int i = 0; i < nt; ++i) s(le, nx + i) = t[le * nt + i];
-    }
-  }
-  state_ov->doImport(*state_own, *dm.maps().importer, Tpetra::INSERT);
-  auto s = state_ov->getLocalViewHost(Tpetra::Access::ReadOnly);
-  for (LocalId le = no; le < nov; ++le) {
-    for (int i = 0; i < nx; ++i) x[le * nx + i] = s(le, i);
-    for (int i = 0; i < nt; ++i) t[le * nt + i] = s(le, nx + i);
-  }
+  import_ghost_rows(
+      dm.maps(), no, *state_own, *state_ghost,
+      [this](auto& s, LocalId le) {
+        for (int i = 0; i < nx; ++i) s(le, i) = x[le * nx + i];
+        for (int i = 0; i < nt; ++i) s(le, nx + i) = t[le * nt + i];
+      },
+      [this](const auto& s, LocalId r, LocalId le) {
+        for (int i = 0; i < nx; ++i) x[le * nx + i] = s(r, i);
+        for (int i = 0; i < nt; ++i) t[le * nt + i] = s(r, nx + i);
+      });
 }
 
 void ShellDynamics::Impl::compute_forces() {
@@ -694,15 +706,14 @@ void ShellDynamics::Impl::compute_forces() {
   // 2. The ghosts' fluxes come from their owners (Import, INSERT).
   {
     ScopedTimer timer(times.exchange);
-    {
-      auto s = flux_own->getLocalViewHost(Tpetra::Access::OverwriteAll);
-      for (LocalId le = 0; le < no; ++le)
-        for (int i = 0; i < nflux_cols; ++i) s(le, i) = flux[le * nflux_cols + i];
-    }
-    flux_ov->doImport(*flux_own, *dm.maps().importer, Tpetra::INSERT);
-    auto s = flux_ov->getLocalViewHost(Tpetra::Access::ReadOnly);
-    for (LocalId le = no; le < nov; ++le)
-      for (int i = 0; i < nflux_cols; ++i) flux[le * nflux_cols + i] = s(le, i);
+    import_ghost_rows(
+        dm.maps(), no, *flux_own, *flux_ghost,
+        [this](auto& s, LocalId le) {
+          for (int i = 0; i < nflux_cols; ++i) s(le, i) = flux[le * nflux_cols + i];
+        },
+        [this](const auto& s, LocalId r, LocalId le) {
+          for (int i = 0; i < nflux_cols; ++i) flux[le * nflux_cols + i] = s(r, i);
+        });
   }
   // 3. Interface kernel (penalty on intact interfaces), every local interface: writes its own slots.
   {
@@ -1030,7 +1041,8 @@ double ShellDynamics::bytes_per_element() const {
                        sizeof(disc::DgInterfaceRef) * double(s.iref.size()) +
                        sizeof(materials::PlasticState) * double(s.pstate.size() + s.pstate_new.size()) +
                        sizeof(materials::PlasticSection) * double(s.psect.size()) +
-                       sizeof(double) * double(nstate + nflux) * double(2 * s.nov);  // Tpetra transfer buffers
+                       // Tpetra transfer buffers: owned rows (no) plus ghost rows (nov - no), state and flux
+                       sizeof(double) * double(nstate + s.nflux_cols) * double(s.nov);
   return s.no > 0 ? bytes / s.no : 0.0;
 }
 
