@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Initial-velocity sweep of the clamped 6061-T6 beam-blast case (paper §6.3, benchmarks.md §2).
+"""Initial-velocity sweep of the clamped 6061-T6 beam-blast case (paper §6.3, docs/verification.md §2).
 
 For each V0 this writes a Gmsh mesh (the Rectangle generator's 'Alternating' mesh, plus a node set
 'centre' on the line x = L/2 for a probe) and a deck, runs shellfrac serially, and reports the first
@@ -204,7 +204,7 @@ def main():
     p.add_argument("-o", "--outdir", default="beam_blast_sweep")
     p.add_argument("--alpha1", type=float, default=1.0, help="Fracture->Alpha 1 (1 = paper)")
     p.add_argument("--shear-yield", action="store_true",
-                   help="Shear Yield = true: transverse shear in the yield function (math.md §4.1 option (b))")
+                   help="Shear Yield = true: transverse shear in the yield function (docs/theory.md §4.1)")
     p.add_argument("--fixture", type=int, default=0,
                    help="columns of cells of clamping fixture on each side (0: clamped end edges, which cannot break)")
     p.add_argument("--thresholds", action="store_true",

@@ -1,5 +1,5 @@
 // Half of the impulsively loaded cylindrical panel of Talamini & Radovitzky (2016) §6.1, Fig. 10
-// (Balmer & Witmer / Morino, Leech & Witmer; benchmarks.md §1): R = 2.9375 in, L = 12.56 in, 120 degrees.
+// (Balmer & Witmer / Morino, Leech & Witmer; docs/verification.md §1): R = 2.9375 in, L = 12.56 in, 120 degrees.
 // Axis along x; the point at angle theta is (x, R sin(theta), R cos(theta)), so the crown is the +z line
 // and the loaded patch's centre is (L/2, 0, R). The model is the half theta in [0, 60 deg]; y = 0 is the
 // symmetry plane.

@@ -1,5 +1,5 @@
 // Mode III tearing of a notched 6061-T6 plate: Talamini & Radovitzky (2016) §6.2, Fig. 12, Table 2
-// (experiments of Li et al., Int. J. Fract. 168 (2011); benchmarks.md §3). Units: m.
+// (experiments of Li et al., Int. J. Fract. 168 (2011); docs/verification.md §3). Units: m.
 // Interpretation of Fig. 12 (the figure gives only 28.6 mm, 63.5 mm, 76.2 mm and "1 mm"; the text gives the
 // ligament b = 33.1 mm):
 //   * plate width 76.2 mm along x, the crack direction;
