@@ -20,12 +20,10 @@
 #include "shellfrac/core/application.hpp"
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
-#include "shellfrac/dist/distributed_mesh.hpp"
-#include "shellfrac/dist/partitioner.hpp"
-#include "shellfrac/mesh/edge_topology.hpp"
-#include "shellfrac/solver/mesh_factory.hpp"
+#include "shellfrac/decomposition/distributed_mesh.hpp"
+#include "shellfrac/solver/deck.hpp"
+#include "shellfrac/solver/model_setup.hpp"
 #include "shellfrac/solver/shell_dynamics.hpp"
-#include "shellfrac/solver/simulation.hpp"
 
 namespace {
 
@@ -79,16 +77,11 @@ int run(int argc, char** argv) {
   }
   if (deck_file.empty()) deck_file = std::string(SHELLFRAC_SOURCE_DIR) + "/xml/cantilever_200x40.xml";
 
-  // The model of a shellfrac run (solver::Simulation's constructor, without its input diagnostics).
+  // The model of a shellfrac run, built as the run builds it.
   const auto deck = solver::Deck::read(deck_file, comm);
-  const auto mesh = solver::build_mesh(deck.mesh, comm);
-  for (const auto& b : mesh.blocks)
-    SHELLFRAC_INPUT_REQUIRE(deck.blocks.count(b.name), deck_file << ": mesh block '" << b.name
-                                                                 << "' has no entry in the Blocks sublist");
-  const auto topo = mesh::build_edge_topology(mesh, deck.mesh.non_manifold);
-  const auto part = dist::partition_elements(mesh, topo, np, *deck.partition, comm);
-  const dist::DistributedMesh dmesh(mesh, topo, part, comm);
-  solver::ShellDynamics dyn(mesh, dmesh, solver::make_dynamics_setup(deck, mesh));
+  const auto model = solver::build_run_model(deck, comm);
+  const auto& dmesh = *model.distributed;
+  auto& dyn = *model.dynamics;
 
   for (long s = 0; s < warmup; ++s) dyn.step();
   const solver::PhaseTimes before = dyn.phase_times();

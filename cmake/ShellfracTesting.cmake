@@ -1,4 +1,4 @@
-# Test helpers (style-anchors §8). Every test is a GTest executable linked with tests/unit_main.cpp
+# Test helpers. Every test is a GTest executable linked with tests/unit_main.cpp
 # (MPI + Kokkos initialised through Tpetra::ScopeGuard). MPI tests run the same binary at several rank
 # counts: the rank count is a test parameter, not a separate test.
 find_package(GTest REQUIRED)

@@ -98,7 +98,7 @@ int run(int argc, char** argv) {
               << " non-manifold)\n"
               << "  partition: " << s.min_owned << ".." << s.max_owned << " elements and " << s.min_ghosts << ".."
               << s.max_ghosts << " ghosts per rank\n"
-              << "  time step: " << s.dt << " (stable estimate " << s.stable_dt << ", math.md §8)\n";
+              << "  time step: " << s.dt << " (stable estimate " << s.stable_dt << ", docs/theory.md §8)\n";
   }
   if (check) {
     if (root) std::cout << "  deck and mesh are valid (--check: nothing written)\n";

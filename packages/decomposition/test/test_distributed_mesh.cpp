@@ -12,16 +12,16 @@
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
-#include "shellfrac/dist/distributed_mesh.hpp"
-#include "shellfrac/dist/element_maps.hpp"
-#include "shellfrac/dist/partitioner.hpp"
+#include "shellfrac/decomposition/distributed_mesh.hpp"
+#include "shellfrac/decomposition/element_maps.hpp"
+#include "shellfrac/decomposition/partitioner.hpp"
 #include "shellfrac/mesh/edge_topology.hpp"
 #include "shellfrac/mesh/generators.hpp"
 
 namespace {
 
 using namespace shellfrac;
-using dist::DistributedMesh;
+using decomposition::DistributedMesh;
 
 struct Case {
   std::string name;
@@ -35,8 +35,8 @@ Case make_case(const std::string& name, mesh::SerialMesh m, const std::string& m
   c.topo = mesh::build_edge_topology(c.mesh);
   Teuchos::ParameterList pl("Partitioning");
   pl.set("Method", method);
-  const auto params = dist::PartitionParams::from_parameters(pl, {"test.xml", "Partitioning"});
-  c.part = dist::partition_elements(c.mesh, c.topo, parallel::size(), params);
+  const auto params = decomposition::PartitionParams::from_parameters(pl, {"test.xml", "Partitioning"});
+  c.part = decomposition::partition_elements(c.mesh, c.topo, parallel::size(), params);
   return c;
 }
 
@@ -141,7 +141,7 @@ TEST(DistributedMesh, ImportFillsGhostsFromOwners) {
     const auto& maps = dm.maps();
     constexpr int ncols = 3;
     auto f = [](GlobalId gid, int j) { return 1000.0 * static_cast<double>(j + 1) + 0.25 * static_cast<double>(gid); };
-    dist::multivector_type owned(maps.owned, ncols), overlap(maps.overlap, ncols);
+    decomposition::multivector_type owned(maps.owned, ncols), overlap(maps.overlap, ncols);
     {
       auto v = owned.getLocalViewHost(Tpetra::Access::OverwriteAll);
       for (LocalId le = 0; le < dm.num_owned(); ++le)
@@ -176,7 +176,7 @@ TEST(DistributedMesh, GhostImportMovesOnlyTheSendRows) {
       EXPECT_TRUE(maps.send_rows.empty()) << c.name;
     }
     ASSERT_EQ(static_cast<LocalId>(maps.ghosts->getNodeNumElements()), dm.num_ghosts()) << c.name;
-    dist::multivector_type owned(maps.owned, ncols), ghosts(maps.ghosts, ncols);
+    decomposition::multivector_type owned(maps.owned, ncols), ghosts(maps.ghosts, ncols);
     owned.putScalar(-7.0);
     {
       auto v = owned.getLocalViewHost(Tpetra::Access::ReadWrite);
@@ -199,7 +199,7 @@ TEST(DistributedMesh, ExportAddSumsGhostContributions) {
     // Independent expectation: element e receives 1 from its owner plus 1 from every other rank that
     // owns a face neighbour of e (that rank holds e as a ghost).
     const auto nb = edge_neighbours(c);
-    dist::multivector_type overlap(maps.overlap, 2), owned(maps.owned, 2);
+    decomposition::multivector_type overlap(maps.overlap, 2), owned(maps.owned, 2);
     overlap.putScalar(1.0);
     owned.putScalar(0.0);
     owned.doExport(overlap, *maps.exporter, Tpetra::ADD);
@@ -314,7 +314,7 @@ TEST(DistributedMesh, RankWithoutElements) {
     EXPECT_EQ(dm.num_ghosts(), 1);
   }
   const auto& maps = dm.maps();
-  dist::multivector_type owned(maps.owned, 1), overlap(maps.overlap, 1);
+  decomposition::multivector_type owned(maps.owned, 1), overlap(maps.overlap, 1);
   {
     auto v = owned.getLocalViewHost(Tpetra::Access::OverwriteAll);
     for (LocalId le = 0; le < dm.num_owned(); ++le) v(le, 0) = 10.0 + static_cast<double>(dm.element_gid(le));

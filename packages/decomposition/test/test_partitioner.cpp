@@ -8,14 +8,14 @@
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
-#include "shellfrac/dist/partitioner.hpp"
+#include "shellfrac/decomposition/partitioner.hpp"
 #include "shellfrac/mesh/edge_topology.hpp"
 #include "shellfrac/mesh/generators.hpp"
 
 namespace {
 
 using namespace shellfrac;
-using dist::PartitionParams;
+using decomposition::PartitionParams;
 
 struct NamedMesh {
   std::string name;
@@ -78,7 +78,7 @@ TEST(Partitioner, MetisCoversBalancedAndDeterministic) {
     const GlobalId ne = m.num_elements();
     for (int nparts : {np, 5}) {
       const auto params = make_params("METIS");
-      const auto part = dist::partition_elements(m, topo, nparts, params);
+      const auto part = decomposition::partition_elements(m, topo, nparts, params);
       const auto sizes = check_partition(part, ne, nparts, "METIS " + name);
       if (nparts == 1) continue;
       // Balance: METIS targets 5 % imbalance; on a few hundred elements allow 15 % (a bug such as an
@@ -93,7 +93,7 @@ TEST(Partitioner, MetisCoversBalancedAndDeterministic) {
       EXPECT_LT(edge_cut(topo, part), static_cast<GlobalId>(0.25 * static_cast<double>(topo.interfaces.size())))
           << "METIS " << name;
       // Deterministic for a fixed seed (the solver relies on reproducible decompositions).
-      EXPECT_TRUE(dist::partition_elements(m, topo, nparts, params) == part) << "METIS " << name;
+      EXPECT_TRUE(decomposition::partition_elements(m, topo, nparts, params) == part) << "METIS " << name;
     }
   }
 }
@@ -105,7 +105,7 @@ TEST(Partitioner, Zoltan2AllAlgorithmsCover) {
       const auto topo = mesh::build_edge_topology(m);
       const GlobalId ne = m.num_elements();
       const int nparts = std::max(np, 2);  // at np = 1 still make Zoltan2 actually partition
-      const auto part = dist::partition_elements(m, topo, nparts, make_params("Zoltan2", alg));
+      const auto part = decomposition::partition_elements(m, topo, nparts, make_params("Zoltan2", alg));
       const auto sizes = check_partition(part, ne, nparts, "Zoltan2 " + alg + " " + name);
       // Every part used and none grossly overloaded (Zoltan2 is asked for 5 % imbalance).
       const double avg = static_cast<double>(ne) / nparts;
@@ -127,10 +127,10 @@ TEST(Partitioner, Zoltan2FewerElementsThanRanks) {
   const auto m = strip3();
   const auto topo = mesh::build_edge_topology(m);
   for (const std::string alg : {"scotch", "rcb", "multijagged", "phg"}) {
-    const auto part = dist::partition_elements(m, topo, 2, make_params("Zoltan2", alg));
+    const auto part = decomposition::partition_elements(m, topo, 2, make_params("Zoltan2", alg));
     check_partition(part, 3, 2, "strip3 " + alg);
   }
-  check_partition(dist::partition_elements(m, topo, 2, make_params("METIS")), 3, 2, "strip3 METIS");
+  check_partition(decomposition::partition_elements(m, topo, 2, make_params("METIS")), 3, 2, "strip3 METIS");
 }
 
 TEST(Partitioner, TrivialCases) {
@@ -139,10 +139,10 @@ TEST(Partitioner, TrivialCases) {
   for (const std::string method : {"METIS", "Zoltan2"}) {
     const auto params = make_params(method);
     // One part: no library call, every element in part 0.
-    EXPECT_EQ(dist::partition_elements(m, topo, 1, params), std::vector<int>({0, 0})) << method;
+    EXPECT_EQ(decomposition::partition_elements(m, topo, 1, params), std::vector<int>({0, 0})) << method;
     // More parts than elements: must not fail; element i -> part i, the remaining parts empty.
     for (int nparts : {2, 3, 4}) {
-      const auto part = dist::partition_elements(m, topo, nparts, params);
+      const auto part = decomposition::partition_elements(m, topo, nparts, params);
       check_partition(part, 2, nparts, method + " 2 elements");
       EXPECT_NE(part[0], part[1]) << method << " nparts " << nparts;
     }

@@ -1,7 +1,7 @@
 #pragma once
 /// \file dg_test_model.hpp
 /// Test helper shared by the DG operator tests: a serial DG model in which every element owns copies of
-/// its nodes, assembled by gather exactly as described in math.md §5.4 (own forces, neighbours' lifting
+/// its nodes, assembled by gather exactly as described in theory.md §5.4 (own forces, neighbours' lifting
 /// fluxes written to per-(element, edge) buffers and gathered by the owner, then interface penalties).
 #include <algorithm>
 #include <array>
@@ -65,7 +65,7 @@ struct Model {
   double energy_and_forces(std::vector<double>& F, std::vector<double>& G) const {
     const auto ne = mesh.num_elements();
     F.assign(ne * 18, 0), G.assign(ne * 9, 0);
-    auto law = [&](const double eps[3], const double gam[2], const double rho[3], double N[3], double Q[2],
+    auto law = [&](int, const double eps[3], const double gam[2], const double rho[3], double N[3], double Q[2],
                    double M[3]) {
       materials::elastic_resultants(section, eps, gam, rho, N, Q, M);
       return materials::elastic_energy(section, eps, gam, rho);

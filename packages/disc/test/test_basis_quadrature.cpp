@@ -1,4 +1,4 @@
-// Shape functions and quadrature (math.md §1.2, §1.3).
+// Shape functions and quadrature (theory.md §1.2, §1.3).
 // References: exact monomial integrals over the master triangle, int_T xi1^p xi2^q = p! q! / (p + q + 2)!,
 // and over [0, 1], int s^k = 1 / (k + 1); nodal (Kronecker) property and partition of unity by construction
 // of Lagrange bases.
@@ -7,8 +7,9 @@
 #include <cmath>
 
 #include "shellfrac/disc/quadrature.hpp"
-#include "shellfrac/disc/triangle_basis.hpp"
+#include "shellfrac/core/triangle_basis.hpp"
 
+using namespace shellfrac;
 using namespace shellfrac::disc;
 
 namespace {

@@ -1,5 +1,5 @@
-// The DG shell operator (math.md §5) assembled serially over small meshes. References:
-//  * rigid motions x = R X + b, t = R t0 produce zero strain energy and zero forces (objectivity, §11.4);
+// The DG shell operator (theory.md §5) assembled serially over small meshes. References:
+//  * rigid motions x = R X + b, t = R t0 produce zero strain energy and zero forces (objectivity, §2);
 //  * the assembled forces are the exact gradient of the total discrete energy Pi_h (§5.6): checked by
 //    central finite differences on a state with discontinuous (DG) perturbations, so that liftings and
 //    penalties are all active;
@@ -135,7 +135,7 @@ TEST(DgOperator, MembranePatchTestOnDistortedMesh) {
     if (!interior) continue;
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(node_force[n * 3 + c], 0.0, 1e-9 * fscale) << "node " << n;
   }
-  // Total x-reaction on the x = 2 edge: the force per unit reference length is n^1 = N^{1j} a_j (math.md
+  // Total x-reaction on the x = 2 edge: the force per unit reference length is n^1 = N^{1j} a_j (theory.md
   // §3.2) with a_1 = F e1, a_2 = F e2; its x-component times the width 1.
   double rx = 0;
   for (GlobalId n = 0; n < m.num_nodes(); ++n)

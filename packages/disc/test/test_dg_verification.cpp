@@ -1,10 +1,10 @@
-// Verification of the DG shell operator (math.md §5) at the operator level (serial, no time stepping).
+// Verification of the DG shell operator (theory.md §5) at the operator level (serial, no time stepping).
 // Each test states its reference:
-//  * LiftingJumpIdentity: math.md §11 test 3 / §5.2 (one-sided lifting of a constant jump; the two halves
+//  * LiftingJumpIdentity: theory.md §5.2 (one-sided lifting of a constant jump; the two halves
 //    of the jump measure -[u] (x) nu delta_e), for the P1 position lifting and the P0 director lifting;
-//  * ContinuousFieldsHaveClassicalDgDerivative: math.md §11 test 3 first sentence / §5.2 "Consistency";
-//  * ZeroEnergyModes*: math.md §5.5 "VERIFIED: a free 3x3-square plate has exactly 6 zero modes with
-//    c > 0. With c = 0 it has 114 (P1/P0 lifting)" and §11 test 5;
+//  * ContinuousFieldsHaveClassicalDgDerivative: theory.md §5.2 "Consistency";
+//  * ZeroEnergyModes*: theory.md §5.5: a free 3x3-square plate has exactly 6 zero modes with c > 0, and
+//    114 with c = 0 (P1/P0 lifting);
 //  * UniformBendingPatchTest: a uniform curvature state is represented exactly on a distorted flat mesh,
 //    so the discrete energy is the exact 1/2 D_m kappa^2 |S| (+ a known O(kappa^4) membrane part) and the
 //    DG copies of interior nodes are in equilibrium (the bending analogue of the membrane patch test).
@@ -86,7 +86,7 @@ mesh::SerialMesh two_element_mesh() {
 
 }  // namespace
 
-// Reference: math.md §11 test 3 and §5.2. With u = c on E1 and u = 0 on E2 (nu the outward co-normal of E1
+// Reference: theory.md §5.2. With u = c on E1 and u = 0 on E2 (nu the outward co-normal of E1
 // on the shared edge e, |e| its length):  int_{E1} d^DG_i u dS0 = int_{E2} d^DG_i u dS0 = -1/2 c nu_i |e|
 // (local Cartesian components i). For affine elements this is exact (J^-1 constant, 3-point Gauss exact on
 // a straight edge). Also the P1 moments of the position lifting, int_E d^DG_i u L_b dS0 =
@@ -167,7 +167,7 @@ TEST(DgVerification, LiftingJumpIdentity) {
   EXPECT_LT(worst_director, 1e-13);
 }
 
-// Reference: math.md §5.2 "Consistency: if u is continuous, all jumps vanish and d^DG = d" (§11 test 3):
+// Reference: theory.md §5.2 "Consistency": if u is continuous, all jumps vanish and d^DG = d:
 // random continuous P2 positions and P1 directors on a curved (cylindrical) P2 mesh; the DG kinematics with
 // every interior edge lifted equal those with no edge lifted (the classical derivatives) to round-off.
 TEST(DgVerification, ContinuousFieldsHaveClassicalDgDerivative) {
@@ -210,7 +210,7 @@ TEST(DgVerification, ContinuousFieldsHaveClassicalDgDerivative) {
 
 namespace {
 
-/// Free flat n x n unit square, alternating diagonals, P2 (math.md §5.8 mesh).
+/// Free flat n x n unit square, alternating diagonals, P2 (the mesh of theory.md §5.5).
 mesh::SerialMesh flat_square(int n) {
   auto m = mesh::make_rectangle(1.0, 1.0, n, n, mesh::DiagonalPattern::Alternating);
   mesh::promote_to_p2(m);
@@ -290,7 +290,7 @@ ModeCount count_zero_modes(int cells, double c) {
 
 }  // namespace
 
-// Reference: math.md §5.5 / §11 test 5: with c_x = c_T = 3 the only zero-energy modes of the linearized free
+// Reference: theory.md §5.5: with c_x = c_T = 3 the only zero-energy modes of the linearized free
 // flat patch are the 6 rigid-body modes (3 translations, 3 rotations; the drilling rotation is excluded by
 // the 2-component director parametrization). Without penalty (c = 0) there are spurious modes.
 TEST(DgVerification, ZeroEnergyModes2x2) {
@@ -301,9 +301,9 @@ TEST(DgVerification, ZeroEnergyModes2x2) {
   EXPECT_GT(free.zero, 6);
 }
 
-// Reference: math.md §5.5 "a free 3x3-square plate has exactly 6 zero modes with c > 0. With c = 0 it has 114
-// (P1/P0 lifting)" (prototype shared/design/prototype/test_modes.py: unit square, alternating diagonals,
-// h = 0.05, the linearized plate with the same DOFs as here).
+// Reference: theory.md §5.5: a free 3x3-square plate has exactly 6 zero modes with c > 0 and 114 with c = 0
+// (P1/P0 lifting), counted independently on the linearized plate with the same DOFs as here (unit square,
+// alternating diagonals, h = 0.05).
 TEST(DgVerification, ZeroEnergyModes3x3MatchesPrototype) {
   const auto stab = count_zero_modes(3, 3.0);
   EXPECT_EQ(stab.zero, 6);

@@ -1,4 +1,4 @@
-// Director kinematics (director.hpp, small_tensor.hpp): math.md §7.2, §7.3, §5.4, §10.1; paper
+// Director kinematics (director.hpp, small_tensor.hpp): theory.md §7.2, §7.3, §5.4, §10.1; paper
 // Appendix A, eqs. A.1-A.4 (Algorithm 1).
 // References used below:
 //  * SO(3): Lambda^T Lambda = 1, det Lambda = +1; Lambda E3 = t (definition of the director frame, §7.2).
@@ -152,10 +152,10 @@ TEST(SmallTensor, BasicIdentities) {
   EXPECT_EQ(det33(I), 1.0);
 }
 
-// ------------------------------------------------------------------ initial rotation (A.1, math.md §7.2)
+// ------------------------------------------------------------------ initial rotation (A.1, theory.md §7.2)
 
 TEST(Director, InitialRotationIsRotationMappingE3ToT0) {
-  // Reference: SO(3) membership and Lambda E3 = t0 (math.md §7.2 check, tolerance 1e-14).
+  // Reference: SO(3) membership and Lambda E3 = t0 (theory.md §7.2, tolerance 1e-14).
   Rng rng(12345);
   auto check = [](const double t0[3]) {
     double L[3][3];
@@ -180,7 +180,7 @@ TEST(Director, InitialRotationIsRotationMappingE3ToT0) {
   check(E3);
   check(mE3);
   {
-    // t0 = E3 -> identity; t0 = -E3 -> diag(1, -1, -1) (math.md §7.2 CHOICE).
+    // t0 = E3 -> identity; t0 = -E3 -> diag(1, -1, -1) (theory.md §7.2).
     double L[3][3], I[3][3];
     initial_rotation(E3, L);
     identity33(I);
@@ -207,7 +207,7 @@ TEST(Director, InitialRotationIsRotationMappingE3ToT0) {
 
 TEST(Director, LongRandomSequenceStaysOnSphereAndInSO3) {
   // Reference: |t| = 1, Lambda in SO(3), Lambda E3 = t after 1e5 large random increments (|dT| up to pi),
-  // without re-orthonormalization (math.md §7.3: "VERIFIED: |t| - 1 below 1e-12 over 30 000 steps").
+  // without re-orthonormalization (theory.md §7.3).
   Rng rng(2024);
   double t[3], L[3][3];
   rng.unit3(t);
@@ -252,7 +252,7 @@ TEST(Director, ZeroIncrementIsIdentity) {
 TEST(Director, GeodesicExactness) {
   // Reference: exponential-map property along a great circle: n updates by the fixed material increment
   // dT (|dT| = th) equal one update by n dT (angle n th), because the material direction is parallel-
-  // transported along the geodesic it generates (math.md §7.3).
+  // transported along the geodesic it generates (theory.md §7.3).
   Rng rng(99);
   const int ns[] = {2, 10, 100, 7};
   const double ths[] = {0.9, 0.3, 0.05, 1.2};  // 7 * 1.2 > 2 pi: wraps around the great circle
@@ -322,7 +322,7 @@ TEST(Director, SmallAngleBranchContinuity) {
 TEST(Director, ParallelTransportKeepsMaterialBasisTangent) {
   // Reference: t_{n+1} . (Lambda-bar_{n+1} T) = 0 for every T (Lambda-bar spans the tangent plane), and the
   // transported increment Lambda-bar_{n+1} dT equals the geodesic velocity -th sin(th) t_n + cos(th) dt_n
-  // (so Tdot needs no transformation, math.md §7.3).
+  // (so Tdot needs no transformation, theory.md §7.3).
   Rng rng(777);
   double t[3], L[3][3];
   rng.unit3(t);
@@ -351,7 +351,7 @@ TEST(Director, ParallelTransportKeepsMaterialBasisTangent) {
 }
 
 TEST(Director, LambdaBarTransposeIsAdjoint) {
-  // Reference: g . (Lambda-bar T) = (Lambda-bar^T g) . T (math.md §5.4 force projection is the adjoint
+  // Reference: g . (Lambda-bar T) = (Lambda-bar^T g) . T (theory.md §5.4 force projection is the adjoint
   // of the velocity map); Lambda-bar^T t = 0 (drilling/normal component is powerless).
   Rng rng(5);
   for (int n = 0; n < 1000; ++n) {
@@ -369,7 +369,7 @@ TEST(Director, LambdaBarTransposeIsAdjoint) {
   }
 }
 
-// ------------------------------------------------------------------ constraints (math.md §10.1)
+// ------------------------------------------------------------------ constraints (theory.md §10.1)
 
 TEST(Director, ProjectOutIsOrthogonalIdempotentProjection) {
   // Reference: P T = T - (d.T) d/|d|^2 is the orthogonal projector onto d-perp: (P T).d = 0, P P = P,
@@ -395,7 +395,7 @@ TEST(Director, ProjectOutIsOrthogonalIdempotentProjection) {
 }
 
 TEST(Director, SymmetryPlaneConstraintKeepsDirectorInPlane) {
-  // Reference: math.md §10.1 symmetry plane with normal s: with t0.s = 0 and d = Lambda-bar^T s projected
+  // Reference: theory.md §10.1 symmetry plane with normal s: with t0.s = 0 and d = Lambda-bar^T s projected
   // out of dT, the exponential map keeps t.s = 0 (t_{n+1} combines t_n and dt_s, both perpendicular to s).
   Rng rng(8);
   const double s[3] = {0.0, 1.0, 0.0};

@@ -1,13 +1,13 @@
 // Element geometry at quadrature points, HRZ-lumped mass / rotary inertia and the element stable time step
-// (math.md §1.3-§1.4, §6, §8).
+// (theory.md §1.3-§1.4, §6, §8).
 // References used below:
-//  * affine triangle: G_1 = X2 - X1, G_2 = X3 - X1 are constant, j0 = |G_1 x G_2| = 2 Area (math.md §1.4);
+//  * affine triangle: G_1 = X2 - X1, G_2 = X3 - X1 are constant, j0 = |G_1 x G_2| = 2 Area (theory.md §1.4);
 //  * cylinder of radius R: developable, dS = R dtheta dz, so the patch over a parametric (theta, z) triangle
 //    of area A_p has exact area R A_p;
 //  * HRZ for an affine P2 triangle: int N_vertex^2 = Area/30, int N_mid^2 = 8 Area/45, so
-//    d_vertex / sum d = (1/30) / (3/30 + 3*8/45) = 1/19 and d_mid / sum d = 16/57 (math.md §6);
+//    d_vertex / sum d = (1/30) / (3/30 + 3*8/45) = 1/19 and d_mid / sum d = 16/57 (theory.md §6);
 //    P1: int L_a^2 = Area/6 each, so 1/3 each;
-//  * stable time step: the closed-form formulas of math.md §8, evaluated by hand below and in 40-digit
+//  * stable time step: the closed-form formulas of theory.md §8, evaluated by hand below and in 40-digit
 //    decimal arithmetic (Python `decimal`, prec = 40) for the fuselage numbers.
 #include <gtest/gtest.h>
 
@@ -17,8 +17,9 @@
 #include "shellfrac/disc/lumped_mass.hpp"
 #include "shellfrac/disc/quadrature.hpp"
 #include "shellfrac/disc/stable_time_step.hpp"
-#include "shellfrac/disc/triangle_basis.hpp"
+#include "shellfrac/core/triangle_basis.hpp"
 
+using namespace shellfrac;
 using namespace shellfrac::disc;
 
 namespace {
@@ -84,7 +85,7 @@ double cylinder_element(double R, double dth, double X[6][3]) {
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------------------
-// Geometry (math.md §1.4)
+// Geometry (theory.md §1.4)
 
 TEST(ElementGeometry, AffineElementInRotatedTranslatedFrame) {
   double X[6][3], area;
@@ -143,7 +144,7 @@ TEST(ElementGeometry, AffineElementInRotatedTranslatedFrame) {
 }
 
 TEST(ElementGeometry, JinvMapsParametricToArcLengthDerivatives) {
-  // Reference: for a linear field f(X) = a . X on an affine element, df/dx^i = a . e_i (math.md §1.4).
+  // Reference: for a linear field f(X) = a . X on an affine element, df/dx^i = a . e_i (theory.md §1.4).
   double X[6][3], area;
   generic_affine(X, area);
   const double a[3] = {0.7, -1.3, 2.1};
@@ -214,7 +215,7 @@ TEST(ElementGeometry, CharacteristicLength) {
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// HRZ lumping (math.md §6)
+// HRZ lumping (theory.md §6)
 
 TEST(LumpedMass, AffineP2GivesOneNineteenthAndSixteenFiftySevenths) {
   // Reference: d_vertex = Area/30, d_mid = 8 Area/45 (exact P2 mass-matrix diagonal), so 1/19 and 16/57.
@@ -244,7 +245,7 @@ TEST(LumpedMass, AffineP2GivesOneNineteenthAndSixteenFiftySevenths) {
 
 TEST(LumpedMass, DistortedCurvedElementStaysPositive) {
   // Reference: HRZ scales the (positive) consistent diagonal, so every m_A > 0 whenever j0 > 0, and the
-  // total is rho h * element area (math.md §6). Element: scalene 3-D triangle, mid-side nodes moved off
+  // total is rho h * element area (theory.md §6). Element: scalene 3-D triangle, mid-side nodes moved off
   // the edge midpoints along the edge and out of plane (non-affine and curved).
   double X[6][3] = {{0.0, 0.0, 0.0}, {1.2, 0.1, 0.05}, {0.25, 0.9, -0.1}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
   const int mid[3][2] = {{0, 1}, {1, 2}, {2, 0}};
@@ -280,14 +281,14 @@ TEST(LumpedMass, DistortedCurvedElementStaysPositive) {
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// Stable time step (math.md §8)
+// Stable time step (theory.md §8)
 
 TEST(StableTimeStep, FuselageNumbersByHand) {
-  // Aluminium fuselage skin (math.md §8): E = 70 GPa, nu = 0.33, rho = 2700, h = 1.5 mm, l_E = 4.3 cm, c = 3.
+  // Aluminium fuselage skin (theory.md §8): E = 70 GPa, nu = 0.33, rho = 2700, h = 1.5 mm, l_E = 4.3 cm, c = 3.
   StableStepParams p;
   p.E = 70e9, p.nu = 0.33, p.rho = 2700, p.h = 1.5e-3;
   const double lE = 4.3e-2;
-  // Hand evaluation of the formulas of math.md §8.
+  // Hand evaluation of the formulas of theory.md §8.
   const double cL = std::sqrt(70e9 / (2700 * (1 - 0.33 * 0.33)));
   const double G = 70e9 / (2 * 1.33);
   const double cS = std::sqrt(G / 2700);
@@ -308,18 +309,18 @@ TEST(StableTimeStep, FuselageNumbersByHand) {
   const double dt = element_stable_dt(p, lE);
   EXPECT_NEAR(dt / (2 / w_rot), 1.0, 1e-12);
   EXPECT_NEAR(dt / 2.9850185346018425e-7, 1.0, 1e-12);
-  // The thin-shell approximation dt ~= 2h/(sqrt(12 kappa) c_S) ~= 0.63 h/c_S = 3.03e-7 s (math.md §8),
+  // The thin-shell approximation dt ~= 2h/(sqrt(12 kappa) c_S) ~= 0.63 h/c_S = 3.03e-7 s (theory.md §8),
   // within the size of the neglected bending/penalty term (~1.7 % here).
   EXPECT_NEAR(dt / (2 * p.h / (std::sqrt(12 * p.kappa) * cS)), 1.0, 0.02);
   EXPECT_NEAR(dt / (0.63 * p.h / cS), 1.0, 0.02);
-  // Membrane-only step is ~2e-6 s, i.e. ~5x larger (math.md §8).
+  // Membrane-only step is ~2e-6 s, i.e. ~5x larger (theory.md §8).
   EXPECT_NEAR(2 / wm, 1.5943899021255748e-6, 1e-12 * 1.6e-6);
 }
 
 TEST(StableTimeStep, ShearDominatesThinMembraneThick) {
   // Reference: omega_rot^2 = A + B with A = 12 kappa c_S^2 / h^2 (rotary inertia vs transverse shear) and
   // B = (c_L/l_E)^2 (40 + 20 c_T); A/B = 12 kappa (1 - nu)/2 (l_E/h)^2 / (40 + 20 c_T), which exceeds 1
-  // for l_E/h > ~5.5 (nu = 0.33, c = 3) (math.md §8).
+  // for l_E/h > ~5.5 (nu = 0.33, c = 3) (theory.md §8).
   StableStepParams p;
   p.E = 70e9, p.nu = 0.33, p.rho = 2700, p.h = 1e-3;
   const double cL2 = p.E / (p.rho * (1 - p.nu * p.nu)), cS2 = p.E / (2 * (1 + p.nu)) / p.rho;
@@ -359,7 +360,7 @@ TEST(StableTimeStep, ShearDominatesThinMembraneThick) {
 
 TEST(StableTimeStep, RotaryInertiaScaleRaisesStep) {
   // Reference: with s_I = 4 the shear term A is divided by 4, so dt_rot(4)/dt_rot(1) = sqrt((A + B)/(A/4 + B)),
-  // which tends to 2 when A >> B (math.md §8).
+  // which tends to 2 when A >> B (theory.md §8).
   StableStepParams p;
   p.E = 70e9, p.nu = 0.33, p.rho = 2700, p.h = 1.5e-3;
   StableStepParams p4 = p;

@@ -1,12 +1,12 @@
-// Shell strain measures (math.md §2), elastic resultant law (math.md §3.1) and stress-power vectors
-// (math.md §3.2) as point functions. References used below:
+// Shell strain measures (theory.md §2), elastic resultant law (theory.md §3.1) and stress-power vectors
+// (theory.md §3.2) as point functions. References used below:
 //  * reference state: eps_ij = 1/2 (a0_i.a0_j - delta_ij) = 0 for an orthonormal a0_i; gam and rho vanish by
-//    construction of gam0 = a0_i.t0 and rho0 = sym(a0_i.d0_j) (math.md §2), for any t0 (also off-normal) and
+//    construction of gam0 = a0_i.t0 and rho0 = sym(a0_i.d0_j) (theory.md §2), for any t0 (also off-normal) and
 //    any d0 (curved reference);
 //  * objectivity: all strains are built from dot products of a_i, d_i, t, hence invariant under
 //    x -> R x; n^i, m^i, l are linear in a_i, d_i, t with invariant coefficients, hence rotate with R;
 //  * gradient: dW = N^{ij} d eps_ij + M^{ij} d rho_ij + Q^i d gam_i gives n^i = dW/da_i, m^i = dW/dd_i,
-//    l = dW/dt (math.md §3.2 derivation), checked by central finite differences;
+//    l = dW/dt (theory.md §3.2 derivation), checked by central finite differences;
 //  * closed forms: a_1 = (1+s) e_1 gives eps_11 = ((1+s)^2 - 1)/2 = s + s^2/2, N = D_n C0 eps_v gives
 //    N_11 = D_n eps_11, N_22 = nu D_n eps_11; d_1 = k e_1 gives rho_11 = k, M_11 = D_m k, M_22 = nu D_m k;
 //    a_1.t = g gives gam_1 = g, Q_1 = (5/6) G h g with G = E/(2(1+nu));
@@ -281,7 +281,7 @@ TEST(ShellLaw, UniaxialMembraneStretch) {
   const ShellReference ref = make_shell_reference(flat_unit());
   // Dyadic stretches: (1+s)^2 - 1 and s + s^2/2 are exact in binary, so eps_11 must match bit for bit.
   // Small stretches: eps_11 = 1/2 (a_1.a_1 - 1) cancels, so it is exact only up to the rounding of
-  // |a_1|^2 ~ 1, i.e. an absolute error of a few 2^-53 (a property of the formula, math.md §2).
+  // |a_1|^2 ~ 1, i.e. an absolute error of a few 2^-53 (a property of the formula, theory.md §2).
   for (double st : {0.25, -0.125, 0.5, 0.01, 1e-3, 1e-6}) {
     const bool dyadic = (st == 0.25 || st == -0.125 || st == 0.5);
     ShellKinematics k = flat_unit();
@@ -346,7 +346,7 @@ TEST(ShellLaw, PureTransverseShear) {
   const ShellReference ref = make_shell_reference(flat_unit());
   for (double g : {0.125, -0.01}) {
     ShellKinematics k = flat_unit();
-    k.t[0] = g;  // a_1 . t = g, t not normalized (math.md §2 NOTE)
+    k.t[0] = g;  // a_1 . t = g, t not normalized (theory.md §2)
     double eps[3], gam[2], rho[3], N[3], Q[2], M[3];
     compute_strains(k, ref, eps, gam, rho);
     EXPECT_EQ(gam[0], g);

@@ -1,4 +1,4 @@
-// Static verification of the DG shell operator (math.md §5, §11 tests 3 and 6) on the assembled serial model
+// Static verification of the DG shell operator (theory.md §5, §5.8) on the assembled serial model
 // of dg_test_model.hpp. Each test states its reference and tolerance:
 //  * MembranePatchTestOnUnstructuredMesh / BendingPatchTestOnUnstructuredMesh: patch tests on a genuinely
 //    unstructured Delaunay mesh (tests/data/gmsh/patch_unstructured.{geo,msh}: 62 triangles on [0,2]x[0,1],
@@ -12,7 +12,7 @@
 //    clamped strip with a tip shear load. References: Euler-Bernoulli w = P L^3/(3 E I) and Timoshenko
 //    w = P L^3/(3 E I) + P L/(kappa G A); with nu = 0 the Reissner-Mindlin plate strip under a uniform end
 //    shear is exactly the Timoshenko beam (no anticlastic curvature). The thin-limit result checks the
-//    absence of shear locking (math.md §5.8).
+//    absence of shear locking (theory.md §5.8).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -612,7 +612,7 @@ void expect_accurate(const CantileverResult& r) {
 // P1 directors): within 2 % (the acceptance criterion; shear flexibility adds 6e-7 relative here). The 8- and
 // 32-cell results are printed (and the 32-cell one also asserted within 2 %) to show convergence. Measured
 // w/w_EB: 0.9962 (8 x 2), 0.9992 (16 x 2), 0.9999 (32 x 2); with the liftings switched off (the inconsistent
-// interior penalty method) the same runs give 1.12, 1.34, 1.87 (math.md §5.8 "no-lift").
+// interior penalty method) the same runs give 1.12, 1.34, 1.87 (theory.md §5.8).
 TEST(StaticVerification, ThinCantileverMatchesEulerBernoulli) {
   const auto t0 = std::chrono::steady_clock::now();
   for (int nx : {8, 16, 32}) {

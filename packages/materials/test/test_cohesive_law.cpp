@@ -1,7 +1,7 @@
-// Extrinsic resultant cohesive law (math.md §9.1-9.3, §9.5 step 2, §9.7; Talamini & Radovitzky 2016 "SEED"
+// Extrinsic resultant cohesive law (theory.md §9.1-9.3, §9.5 step 2, §9.7; Talamini & Radovitzky, the paper,
 // §3, eqs. 19-31). References used below (derived by hand from the paper's equations):
-//  * derived constants (SEED §3.1): S0 = h sigma_c, k = h sigma_c^2/(2 Gamma), delta_f = S0/k = 2 Gamma/sigma_c;
-//    for the beam-blast material of SEED Table 3 with Gamma = 10e3 (h = 6.53e-3, sigma_c = 375e6):
+//  * derived constants (paper §3.1): S0 = h sigma_c, k = h sigma_c^2/(2 Gamma), delta_f = S0/k = 2 Gamma/sigma_c;
+//    for the beam-blast material of paper Table 3 with Gamma = 10e3 (h = 6.53e-3, sigma_c = 375e6):
 //    S0 = 2.44875e6, k = 4.59140625e10, delta_f = 5.3333...e-5 (exact decimal arithmetic);
 //  * gradient (eq. 17 with eq. 24): phi = 1/2 S(delta_max) delta^2/delta_max is a quadratic form in the jumps at
 //    fixed delta_max, so a central difference of phi is exact up to round-off (~eps phi/step);
@@ -19,7 +19,7 @@
 //    radial loading (S linear in delta, delta linear in the path parameter) and unloading (tractions linear in
 //    the jumps) are integrated exactly by the trapezoid; the remaining defect is O(increment^2);
 //  * consistency (eq. 29 vs eqs. 22-23): equivalent_traction(n_c, m_c) = s delta = S(delta_max) delta/delta_max;
-//    pure membrane tension n = sigma h nu gives n_eq = sigma h (math.md §9.5).
+//    pure membrane tension n = sigma h nu gives n_eq = sigma h (theory.md §9.5).
 #include <gtest/gtest.h>
 
 #include <Kokkos_Core.hpp>
@@ -41,9 +41,9 @@ using shellfrac::materials::make_cohesive_params;
 
 namespace {
 
-// SEED Table 3 (beam blast, Al 6061-T6) with a non-zero Gamma = 10 kJ/m^2 (the paper uses Gamma = 0 there).
+// The paper's Table 3 (beam blast, Al 6061-T6) with a non-zero Gamma = 10 kJ/m^2 (the paper uses Gamma = 0 there).
 CohesiveParams beam_blast(double Gamma = 10e3) { return make_cohesive_params(6.53e-3, 375e6, Gamma); }
-// SEED Table 2 (mode III tearing): h = 2 mm, sigma_c = 325 MPa, Gamma = 0.75 Y0 h with Y0 = 320 MPa.
+// The paper's Table 2 (mode III tearing): h = 2 mm, sigma_c = 325 MPa, Gamma = 0.75 Y0 h with Y0 = 320 MPa.
 CohesiveParams tearing(double a1 = 1, double a2 = 1, double a3 = 1) {
   return make_cohesive_params(2e-3, 325e6, 0.75 * 320e6 * 2e-3, a1, a2, a3);
 }
@@ -516,7 +516,7 @@ TEST(CohesiveLaw, EquivalentTractionConsistency) {
   EXPECT_NEAR(equivalent_traction(p, zero, m, fr.nu), M / (p.alpha3 * p.h), 1e-15 * M / (p.alpha3 * p.h));
 }
 
-// (Test 7) Degenerate cases. Gamma = 0 (SEED Table 3 as printed): k = +inf, delta_f = 0 stored, S = 0 for all
+// (Test 7) Degenerate cases. Gamma = 0 (paper Table 3 as printed): k = +inf, delta_f = 0 stored, S = 0 for all
 // delta_max >= 0, every evaluation (zero or non-zero jumps) returns exactly zero, finite tractions, separated,
 // stored = dissipated = 0; the nucleation measure still uses S0 = h sigma_c. delta_max = 0 with Gamma > 0 and
 // zero jumps: zero tractions, stored 0, dissipated 0, not separated, delta_max stays 0. All exact.

@@ -1,6 +1,6 @@
-// Resultant plasticity point law (math.md §4): equivalent stress (§4.1), associative flow and hardening
+// Resultant plasticity point law (theory.md §4): equivalent stress (§4.1), associative flow and hardening
 // (§4.2), closest-point return map (§4.3). References used below:
-//  * closed forms of sigma_eq (math.md §4.1): sigma_eq^2 = (N11^2 - N11 N22 + N22^2 + 3 N12^2)/h^2
+//  * closed forms of sigma_eq (theory.md §4.1): sigma_eq^2 = (N11^2 - N11 N22 + N22^2 + 3 N12^2)/h^2
 //    + 16 (M11^2 - M11 M22 + M22^2 + 3 M12^2)/h^4 (a_n (2/3) = 1/h^2, a_m (2/3) = 16/h^4); uniaxial N = [s h,0,0]
 //    gives s, a pure moment M = [M0,0,0] with M0 = Y0 h^2/4 gives Y0;
 //  * uniaxial membrane stress (N22 = N12 = 0): the flow direction is P [1,0,0] ~ [2,-1,0], so d eps^p = d alpha
@@ -18,9 +18,9 @@
 //  * with alpha_{n+1} in dW_p: sum dW_p = h sum d alpha (Y0 + H alpha_{k+1})
 //    = h (Y0 alpha + H alpha^2/2) + (h H/2) sum d alpha_k^2   (exact), i.e. first order in the increment;
 //  * closest point (KKT of min 1/2|S - S_tr|^2_{C^-1} + 1/2 H h (alpha' - alpha_n)^2 s.t. sigma_eq(S) <= Y0 + H alpha',
-//    the objective of prototype/test_plast.py): normality d eps^p = dgam a_n P N/sigma_eq,
+//    the objective of an earlier, independent Python check): normality d eps^p = dgam a_n P N/sigma_eq,
 //    d rho^p = dgam a_m P M/sigma_eq with dgam = h d alpha, and no feasible neighbour with a smaller objective;
-//  * prototype numbers: the five random trials of prototype/test_plast.py (numpy default_rng(0), E = 72e9,
+//  * Python-check numbers: the five random trials of that Python check (numpy default_rng(0), E = 72e9,
 //    nu = 0.343, h = 2e-3, Y0 = 320e6, H = 894e6); reference values recomputed in 50-digit arithmetic (mpmath,
 //    dense 3x3 solves of (1 + z a D C0 P) S = S_tr, no spectral basis, root of g by findroot).
 #include <gtest/gtest.h>
@@ -47,8 +47,8 @@ using shellfrac::materials::ReturnMapResult;
 
 namespace {
 
-// Sections: the cylinder panel of SEED §6.1 (psi, in) with H = 0 or H = 0.1 E, the mode III tearing data of
-// SEED §6.2 (SI), and a nu = 0 section.
+// Sections: the cylinder panel of paper §6.1 (psi, in) with H = 0 or H = 0.1 E, the mode III tearing data of
+// paper §6.2 (SI), and a nu = 0 section.
 PlasticSection panel(double H) { return make_plastic_section(10.5e6, 0.33, 0.125, 44e3, H); }
 PlasticSection tearing() { return make_plastic_section(72e9, 0.343, 2e-3, 320e6, 894e6); }
 PlasticSection tearing_perfect() { return make_plastic_section(72e9, 0.343, 2e-3, 320e6, 0.0); }
@@ -66,7 +66,7 @@ double diff3(const double a[3], const double b[3]) {
   return norm3(d);
 }
 
-/// Plane-stress von Mises matrix P of math.md §4.1 applied to a Voigt resultant.
+/// Plane-stress von Mises matrix P of theory.md §4.1 applied to a Voigt resultant.
 void apply_P(const double x[3], double y[3]) {
   y[0] = (2.0 * x[0] - x[1]) / 3.0;
   y[1] = (-x[0] + 2.0 * x[1]) / 3.0;
@@ -145,7 +145,7 @@ void trial_at_factor(const PlasticSection& s, const PlasticState& old, const dou
   }
 }
 
-/// Assertions common to every plastic return (math.md §4.1-4.3):
+/// Assertions common to every plastic return (theory.md §4.1-4.3):
 ///  * consistency sigma_eq(N, Q, M) = Y0 + H alpha_{n+1} to 1e-12 relative;
 ///  * N, M equal elastic_resultants with the new plastic strains to 1e-12 relative (norm-wise), plus the floor
 ///    set by storing eps^p = eps - (D_n C0)^{-1} N in double precision: one ulp of eps and eps^p per component,
@@ -189,7 +189,7 @@ void expect_plastic_return_consistent(const PlasticSection& s, const double eps[
   EXPECT_NEAR(r.plastic_work, dgam * sy, 1e-12 * r.plastic_work + 4e-16 * s.h * next.alpha * sy);
 }
 
-/// Normality (math.md §4.2) with one dgam = h d alpha for all plastic strains, to 1e-10 relative (norm-wise):
+/// Normality (theory.md §4.2) with one dgam = h d alpha for all plastic strains, to 1e-10 relative (norm-wise):
 /// d eps^p = dgam a_n P N / sigma_eq, d rho^p = dgam a_m P M / sigma_eq, d gam^p = dgam a_q Q / sigma_eq (zero
 /// when the shear is elastic, a_q = 0).
 void expect_normality(const PlasticSection& s, const PlasticState& old, const PlasticState& next, const double N[3],
@@ -251,7 +251,7 @@ double solve_increasing(Fun f, double x0, double dx, double tol, bool& ok) {
 
 // ---------------------------------------------------------------------------------------------------------------
 
-// Section constants and sigma_eq closed forms (math.md §4.1). Tolerance 1e-14 relative (a handful of flops).
+// Section constants and sigma_eq closed forms (theory.md §4.1). Tolerance 1e-14 relative (a handful of flops).
 TEST(ResultantPlasticity, SectionAndEquivalentStress) {
   const double E = 10.5e6, nu = 0.33, h = 0.125, Y0 = 44e3, H = 1.05e6;
   const PlasticSection s = make_plastic_section(E, nu, h, Y0, H);
@@ -286,7 +286,7 @@ TEST(ResultantPlasticity, SectionAndEquivalentStress) {
     rng.vec(M, M0);
     const double ref = sigma_eq_explicit(s, N, M);
     EXPECT_NEAR(equivalent_stress(s, N, M), ref, 1e-14 * ref);
-    // Homogeneous of degree 1 (math.md §4.2): sigma_eq(t S) = |t| sigma_eq(S).
+    // Homogeneous of degree 1 (theory.md §4.2): sigma_eq(t S) = |t| sigma_eq(S).
     const double Nt[3] = {-2.5 * N[0], -2.5 * N[1], -2.5 * N[2]}, Mt[3] = {-2.5 * M[0], -2.5 * M[1], -2.5 * M[2]};
     EXPECT_NEAR(equivalent_stress(s, Nt, Mt), 2.5 * ref, 1e-14 * ref);
   }
@@ -566,7 +566,7 @@ TEST(ResultantPlasticity, PureBendingIlyushinLimit) {
 //   * the same sum with the midpoint yield stress, sum dgam (Y0 + H (alpha_n + alpha_{n+1})/2) = sum W_p -
 //     (h H/2) sum d alpha^2, balances W_ext - U_final far better (measured 1.6e-4 and 2.3e-3 times the error of
 //     sum W_p, convergence ratio n vs 2n 2.5-2.8): asserted |error_mid| <= 1e-2 |error| (information for the
-//     energy bookkeeping of math.md §9.7, Check 2).
+//     energy balance of theory.md §9.7).
 struct CycleResult {
   double W_ext = 0.0, U = 0.0, W_p = 0.0, identity_rhs = 0.0, sum_dalpha2 = 0.0, max_dalpha = 0.0, alpha = 0.0;
   double max_pw = 0.0, max_pw_mismatch = 0.0;
@@ -695,7 +695,7 @@ TEST(ResultantPlasticity, ClosestPointNormalityAndMinimality) {
       expect_plastic_return_consistent(s, eps, gam, rho, old, next, N, Q, M, r);
       expect_normality(s, old, next, N, Q, M);
 
-      // Complementary-energy distance (the objective of prototype/test_plast.py).
+      // Complementary-energy distance (the objective of the independent Python check).
       double Ntr[3], Mtr[3], Qtr[2];
       elastic_resultants(s.elastic, eps, gam, rho, old.eps_p, old.gam_p, old.rho_p, Ntr, Qtr, Mtr);
       auto J = [&](const double Nx[3], const double Mx[3], double ax) {
@@ -727,13 +727,13 @@ TEST(ResultantPlasticity, ClosestPointNormalityAndMinimality) {
   }
 }
 
-// (Test 6b) The five random trials of prototype/test_plast.py (E = 72e9, nu = 0.343, h = 2e-3, Y0 = 320e6,
+// (Test 6b) The five random trials of an earlier Python check (E = 72e9, nu = 0.343, h = 2e-3, Y0 = 320e6,
 // H = 894e6, gam = 0; inputs eps, kap (= rho), alpha_n printed with repr() from numpy default_rng(0)). References:
 // 50-digit mpmath solution of the return map (dense solves, no spectral basis), rounded to 17 digits. Tolerance
-// 1e-12 relative (norm-wise N, M; alpha). The prototype itself printed the same values for trials 0-3 (to ~1e-15);
+// 1e-12 relative (norm-wise N, M; alpha). The Python check itself printed the same values for trials 0-3 (to ~1e-15);
 // for trial 4 it printed N = [-354763.03115988977, 30338.514014386077, -286763.17128976714] (3.6e-10 off, yield
-// residual 4.08e-10): its Newton loop replaced an exact root g(z) = 0 by the bracket midpoint (math.md §4.3
-// pseudo-code taken literally), which this implementation avoids.
+// residual 4.08e-10): its Newton loop replaced an exact root g(z) = 0 by the bracket midpoint (a strict
+// bracket test, theory.md §4.3), which this implementation avoids.
 TEST(ResultantPlasticity, ReproducesPrototypeTrials) {
   const PlasticSection s = tearing();
   struct Trial {
@@ -904,10 +904,10 @@ TEST(ResultantPlasticity, UsableInKokkosKernel) {
 }
 
 // ---------------------------------------------------------------------------------------------------------------
-// Transverse shear in the yield function (math.md §4.1 option (b)): sigma_eq^2 += a_q |Q|^2 with a_q = 3/h^2 and
+// Transverse shear in the yield function (`Shear Yield`, theory.md §4.1): sigma_eq^2 += a_q |Q|^2 with a_q = 3/h^2 and
 // flow d gam^p = dgam a_q Q / sigma_eq. References:
 //  * pure shear: sigma_eq = sqrt(3) |Q| / h, so the yield force is Q0 = h sigma_y / sqrt(3) (a uniform shear stress
-//    at von Mises' limit sigma_y / sqrt(3); FEniQS q0, math.md references);
+//    at von Mises' limit sigma_y / sqrt(3); FEniQS q0, theory.md §4.1);
 //  * monotone pure shear gam = [g, 0] (N = M = 0): d gam^p = dgam a_q Q / (sqrt(3) Q / h) = sqrt(3) d alpha, so
 //    Q = D_s (g - sqrt(3) alpha) and sqrt(3) Q / h = Y0 + H alpha give the exact bilinear law (backward Euler is
 //    exact for it at any increment size):  alpha = max(0, (sqrt(3) D_s g / h - Y0) / (3 D_s / h + H)).

@@ -9,7 +9,7 @@
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/disc/quadrature.hpp"
-#include "shellfrac/disc/triangle_basis.hpp"
+#include "shellfrac/core/triangle_basis.hpp"
 #include "shellfrac/mesh/edge_topology.hpp"
 #include "shellfrac/mesh/generators.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
@@ -27,7 +27,7 @@ double surface_area(const SerialMesh& m) {
   for (GlobalId e = 0; e < m.num_elements(); ++e)
     for (int q = 0; q < disc::tri6_rule.num_points; ++q) {
       double N[6], dN[6][2];
-      disc::shape(order, disc::tri6_rule.xi[q][0], disc::tri6_rule.xi[q][1], N, dN);
+      shellfrac::shape(order, disc::tri6_rule.xi[q][0], disc::tri6_rule.xi[q][1], N, dN);
       Vec3 g1{0, 0, 0}, g2{0, 0, 0};
       for (int a = 0; a < m.nodes_per_element; ++a) {
         g1 = add(g1, scale(dN[a][0], m.coords[m.node(e, a)]));

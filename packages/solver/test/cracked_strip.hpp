@@ -1,6 +1,6 @@
 #pragma once
 /// \file cracked_strip.hpp
-/// The strip with one breakable edge shared by test_fracture and test_restart (benchmarks.md §5.2): the
+/// The strip with one breakable edge shared by test_fracture and test_restart (docs/verification.md §5.2): the
 /// Rectangle [0, 2L] x [0, b], 100 x 1 cells (1 mm), right diagonals, with node sets "crack" (x = L) and
 /// "quarter" (x = L/2) and the side set "crack" (the edges at x = L, from the left elements), and the deck
 /// fragment that pulls both ends outward at V with only that side set breakable.

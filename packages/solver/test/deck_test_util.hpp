@@ -13,6 +13,11 @@
 #include <string>
 #include <vector>
 
+#include <Teuchos_Array.hpp>
+#include <Teuchos_ParameterList.hpp>
+#include <Teuchos_Tuple.hpp>
+#include <Teuchos_XMLParameterListCoreHelpers.hpp>
+
 #include "shellfrac/core/parallel.hpp"
 
 namespace shellfrac::test {
@@ -58,6 +63,42 @@ inline std::string deck(const std::string& mesh, const std::string& body, const 
          body + "<ParameterList name=\"Output\"><Parameter name=\"Directory\" type=\"string\" value=\"" + out_dir +
          "\"/><Parameter name=\"Probes\" type=\"Array(string)\" value=\"" + probes + "\"/></ParameterList>\n"
          "</ParameterList>\n";
+}
+
+/// A 3-component array parameter.
+inline Teuchos::Array<double> vec3(double x, double y, double z) {
+  return Teuchos::Array<double>(Teuchos::tuple<double>(x, y, z));
+}
+
+/// A deck as a parameter list: the single block "shell" of material "m" with `section`, and the Output sublist
+/// writing to `out_dir` (the current directory if empty). Add the Mesh and the other sublists with sublist/set.
+inline Teuchos::RCP<Teuchos::ParameterList> base_deck(const ShellSection& section = {}, const std::string& out_dir = "") {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("shellfrac"));
+  auto& shell = pl->sublist("Blocks").sublist("shell");
+  shell.set("Thickness", section.thickness);
+  shell.set("Material", std::string("m"));
+  auto& m = pl->sublist("Materials").sublist("m");
+  m.set("Density", section.density);
+  m.set("Young's Modulus", section.young);
+  m.set("Poisson's Ratio", section.poisson);
+  if (!out_dir.empty()) pl->sublist("Output").set("Directory", out_dir);
+  return pl;
+}
+
+/// Sets the deck's Mesh to a Rectangle generator [0, lx] x [0, ly], nx x ny cells, block "shell".
+inline void set_rectangle(Teuchos::ParameterList& deck, double lx, double ly, int nx, int ny,
+                          const std::string& pattern = "Alternating") {
+  auto& mesh = deck.sublist("Mesh");
+  mesh.set("Source", std::string("Rectangle"));
+  auto& r = mesh.sublist("Rectangle");
+  r.set("Length", lx), r.set("Width", ly), r.set("Elements Along Length", nx), r.set("Elements Along Width", ny);
+  r.set("Diagonal Pattern", pattern), r.set("Block Name", std::string("shell"));
+}
+
+/// Writes a parameter-list deck as XML to `path` on rank 0. Collective.
+inline void write_deck(const std::string& path, const Teuchos::ParameterList& deck) {
+  if (parallel::rank() == 0) Teuchos::writeParameterListToXmlFile(deck, path);
+  MPI_Barrier(MPI_COMM_WORLD);
 }
 
 /// Writes `text` to `path` on rank 0. Collective.

@@ -1,4 +1,4 @@
-// Beam blast (paper §6.3; Menkes & Opat 1973; benchmarks.md §2): the three failure regimes of a clamped
+// Beam blast (paper §6.3; Menkes & Opat 1973; docs/verification.md §2): the three failure regimes of a clamped
 // 6061-T6 beam given a uniform initial velocity, with the example decks xml/beam_blast_{62,101,225}.xml
 // (40 x 5 cells; Shear Yield and Alpha 1 = 1/sqrt 3: docs/beam_blast.md says why). References:
 //  * the regimes, from the paper's narrative and Menkes & Opat's photographs (paper Fig. 1, Figs. 16-18):
@@ -7,7 +7,7 @@
 //                  the beam thickness");
 //    III (225 m/s) failure at the supports almost at once, "without any significant plastic deformation",
 //                  "clearly shear-dominated".
-//  * "at once" made quantitative with Jones' shear-slide model (benchmarks.md §2.4): the shear slides at the
+//  * "at once" made quantitative with Jones' shear-slide model (docs/verification.md §2.4): the shear slides at the
 //    supports last t1 = m xi0 V0 / (2 Q0) = 32 us at 225 m/s (m = rho h, xi0 = 6 M0/Q0, Q0 = h Y0/sqrt 3); a
 //    shear-off must come before the slide phase ends.
 //  * "at the supports": the broken edges lie within two cells (10 mm) of a clamp.

@@ -5,7 +5,7 @@
 //    Exodus fields (deterministic gather assembly, global-id-ordered sums);
 //  * cantilever plate 1.0 x 1.5 clamped on a 1.0 edge, E = 2.1e6, nu = 0.3, rho = 1, t = 0.1: first
 //    frequency within 2 % of 10.785 Hz (Blevins, Formulas for Dynamics, Acoustics and Vibration, Table 5.3
-//    case 11; shared/reference/benchmarks.md §4), and total energy conserved to 0.1 % of the input energy.
+//    case 11; docs/verification.md §4), and total energy conserved to 0.1 % of the input energy.
 #include <gtest/gtest.h>
 #include <mpi.h>
 

@@ -1,5 +1,5 @@
 // Extrinsic cohesive fracture in the explicit solver (issue #5), each check with its reference:
-//  * StripWithOneCohesiveEdge: benchmarks.md §5.2 (closed form, derived there). A strip x in [0, 2L]
+//  * StripWithOneCohesiveEdge: docs/verification.md §5.2 (closed form, derived there). A strip x in [0, 2L]
 //    (nu = 0, so the membrane wave speed is c = sqrt(E/rho) exactly) whose only breakable edge is at x = L
 //    has both ends pulled outward at V from t = 0. The tension waves Z V (Z = rho c) meet at x = L at
 //    t0 = L/c; with 2 Z V > sigma_c > Z V the edge activates then, and the cohesive law
@@ -7,7 +7,7 @@
 //      t_sep = t0 + (Z delta_c / (2 sigma_c)) ln[2 Z V / (2 Z V - sigma_c)],  delta_c = 2 Gamma / sigma_c.
 //    Asserted: activation and separation times within 2 % of the closed form (the issue's tolerance, on the
 //    times measured from t = 0), the dissipated energy of the separated edge = Gamma h b to 1e-6 relative
-//    (math.md §9.7), the energy balance within 1 % of the input work, and — no artificial compliance — the
+//    (theory.md §9.7), the energy balance within 1 % of the input work, and — no artificial compliance — the
 //    history before activation is bitwise the history of the same strip that cannot break.
 //  * SameBreaksOnAnyRankCount: a clamped 6061-T6 beam (paper §6.3 data, Gamma = 0) hit at 225 m/s shears off
 //    at its supports within microseconds; on np ranks the history (edge and fragment counts, every energy)
@@ -32,7 +32,7 @@ using namespace shellfrac::test;
 
 namespace {
 
-// Seed Table 3 material (6061-T6) with Gamma = 10 kJ/m^2, V = 20 m/s: benchmarks.md §5.2 example
+// the paper's Table 3 material (6061-T6) with Gamma = 10 kJ/m^2, V = 20 m/s: docs/verification.md §5.2 example
 // (c0 = 5058 m/s, Z = 1.362e7 Pa s/m, 2 Z V = 545 MPa > sigma_c = 375 MPa, delta_c = 53.3 um, t_sep - t0 = 1.13 us).
 constexpr double E = 68.9e9, rho = 2693, sigma_c = 375e6, Gamma = 10e3, V = 20;
 constexpr double L = strip_L, b = strip_b, h = strip_h;

@@ -1,5 +1,5 @@
 // Loads, prescribed motions and symmetry planes (issue: elastic dynamics, item 5), each with its reference:
-//  * follower pressure on a free flat plate: the energy balance K + U - W_ext = 0 (math.md §9.7) holds to
+//  * follower pressure on a free flat plate: the energy balance K + U - W_ext = 0 (theory.md §9.7) holds to
 //    0.1 % of the work done, and the work is positive;
 //  * a strip pulled at both ends at V (cosine ramp): before the reflected waves return, the end reaction is
 //    the bar-wave force rho c0 V h b (c0 = sqrt(E/rho), one-dimensional wave theory), and the energy balance

@@ -2,7 +2,7 @@
 // Mindlin plate (issue: elastic dynamics, acceptance "first frequency within 1 %").
 //
 // Plate: NAFEMS FV52 data, a = b = 10 m, h = 1 m, E = 200 GPa, nu = 0.3, rho = 8000 kg/m^3
-// (shared/reference/benchmarks.md §4.8). a/h = 10 is chosen because there transverse shear and rotary
+// (docs/verification.md §4.8). a/h = 10 is chosen because there transverse shear and rotary
 // inertia matter a little but clearly: the Mindlin frequency is 3.4 % below Kirchhoff's (45.911 vs
 // 47.534 Hz), i.e. more than the tolerance, so a code that lost its shear flexibility would fail; and the
 // plate is still thin enough for first-order shear deformation theory (and a shell code) to apply.
@@ -13,7 +13,7 @@
 // equations give the frequency equation (R.D. Mindlin, J. Appl. Mech. 18 (1951) 31-38; J.N. Reddy, Theory
 // and Analysis of Elastic Plates and Shells, 2nd ed., ch. 10, Navier solution of the first-order shear
 // deformation theory for natural vibration (section number not re-checked); S. Hosseini Hashemi,
-// M. Arsanjani, IJSS 42 (2005) 819-853, the all-edges simply supported case; benchmarks.md §4.8)
+// M. Arsanjani, IJSS 42 (2005) 819-853, the all-edges simply supported case; docs/verification.md §4.8)
 //     (S k^2 - mu w^2)(D k^2 + S - I w^2) - S^2 k^2 = 0
 //  => mu I W^2 - [mu (D k^2 + S) + I S k^2] W + S D k^4 = 0,   W = w^2,
 // a quadratic in W whose smaller root is the flexural branch (the larger is the thickness-shear branch).
@@ -21,7 +21,7 @@
 // This solution assumes the HARD simple support: w = 0, M_n = 0 AND zero tangential rotation psi_s = 0.
 //
 // Reference 2 — soft simple support (what the deck's "Simply Supported" is: positions fixed, directors
-// free, math.md §10.1). With psi_s free, Mindlin's plate has a boundary layer of width ~h along each edge
+// free, theory.md §10.1). With psi_s free, Mindlin's plate has a boundary layer of width ~h along each edge
 // (the twisting moment M_ns drops to 0 there) and no closed form; the frequency is lower (here by 3.9 %). It is
 // computed here by a Rayleigh-Ritz method on the same Mindlin energy, converged to 7 digits:
 //     U = 1/2 int D[(psi_x,x)^2 + (psi_y,y)^2 + 2 nu psi_x,x psi_y,y + (1-nu)/2 (psi_x,y + psi_y,x)^2]
@@ -44,7 +44,7 @@
 // * With the deck's "Simply Supported" (soft) the DG shell converges to the soft Ritz value, NOT to
 //   Navier's (3.9 % lower); Richardson extrapolation of 16 and 32 (error ~h^1.7) gives 44.11 Hz.
 // * With the hard support — "Simply Supported" plus a "Symmetry" condition on the same edge whose Normal is
-//   the edge TANGENT (t . tau = 0, i.e. psi_s = 0; math.md §10.1) — it converges to Navier's 45.911 Hz from
+//   the edge TANGENT (t . tau = 0, i.e. psi_s = 0; theory.md §10.1) — it converges to Navier's 45.911 Hz from
 //   above. (This is the way to get the hard support from the deck; there is no separate type.)
 // * Halving the time step (S_f 0.4) leaves f unchanged to 5 digits (12 x 12, soft).
 // Asserted: the issue's acceptance, within 1 % of the exact Navier/Mindlin value, with the hard support on
@@ -225,7 +225,7 @@ Measured run_plate(int n, double periods, double f_ref, bool hard = false) {
             "\"><Parameter name=\"Type\" type=\"string\" value=\"Simply Supported\"/>"
             "<Parameter name=\"Node Set\" type=\"string\" value=\"" + set + "\"/></ParameterList>";
   // Hard support: in addition, a symmetry plane whose normal is the edge TANGENT keeps the director out of
-  // that direction (t . tau = 0: no rotation about the edge normal, psi_s = 0; math.md §10.1, the table's
+  // that direction (t . tau = 0: no rotation about the edge normal, psi_s = 0; theory.md §10.1, the table's
   // "symmetry plane" row). Its position part (v . tau = 0) is already implied by the support.
   if (hard)
     for (const auto& [set, tangent] : {std::pair{"x_min", "{0.0, 1.0, 0.0}"}, std::pair{"x_max", "{0.0, 1.0, 0.0}"},
@@ -267,7 +267,7 @@ void report(int n, const Measured& m, double soft, double navier) {
 }  // namespace
 
 TEST(PlateFrequency, ReferenceValues) {
-  // Navier/Mindlin (1,1), benchmarks.md §4.8: 45.911 Hz; Kirchhoff 47.534 Hz.
+  // Navier/Mindlin (1,1), docs/verification.md §4.8: 45.911 Hz; Kirchhoff 47.534 Hz.
   EXPECT_NEAR(navier_mindlin_frequency(1, 1), 45.911, 1e-3);
   EXPECT_NEAR(kirchhoff_frequency(1, 1), 47.534, 1e-3);
   // The Ritz solver reproduces the closed form with the hard support, and is converged for the soft one.

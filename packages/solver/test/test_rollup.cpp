@@ -1,5 +1,5 @@
 // Roll-up of a cantilever strip by a prescribed end rotation, relaxed to equilibrium (issue #3 acceptance).
-// Reference: the exact elastica of constant curvature (benchmarks.md §4.5; Sze, Liu & Lo, FEAD 40 (2004)
+// Reference: the exact elastica of constant curvature (docs/verification.md §4.5; Sze, Liu & Lo, FEAD 40 (2004)
 // 1551-1569, table reproduced by Elmer's SD_Shell_Cantilever_Couple_High_Order test): strip L = 12, b = 1,
 // t = 0.1, E = 1.2e6, nu = 0, EI = 100, M_max = 2 pi EI/L. At lambda = M/M_max the tip rotation is
 // theta = 2 pi lambda and

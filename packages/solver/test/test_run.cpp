@@ -1,7 +1,7 @@
 // End-to-end runs of the foundation (issue: foundation, acceptance): a generated cylindrical panel and a
 // Gmsh-meshed curved surface are read, partitioned on 1, 2 and 3 ranks, written to Exodus, and read back.
 // Reference: the serial mesh itself. Every DG node written must carry exactly (bitwise) the coordinates of
-// its mesh node and the reference director of math.md §1.5, whatever the rank count; the element count must
+// its mesh node and the reference director of theory.md §1.5, whatever the rank count; the element count must
 // equal the mesh's. Bad decks must raise InputError naming the problem and must write nothing.
 #include <gtest/gtest.h>
 #include <mpi.h>

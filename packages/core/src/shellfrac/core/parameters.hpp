@@ -1,6 +1,6 @@
 #pragma once
 /// \file parameters.hpp
-/// Input decks are Teuchos XML parameter lists. Convention (style-anchors §4, §10.4): every configurable
+/// Input decks are Teuchos XML parameter lists. Convention (docs/input_reference.xml): every configurable
 /// component owns a `valid_parameters()` list (types, defaults, ranges, enumerations, docs with units),
 /// validates its own sublist with `validate()` at depth 0 and converts it into a plain struct; kernels
 /// never see a ParameterList. Errors are InputError messages naming the deck file, the parameter path

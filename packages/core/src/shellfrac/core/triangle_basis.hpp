@@ -1,11 +1,12 @@
 #pragma once
 /// \file triangle_basis.hpp
-/// Shape functions on the master triangle T = {xi1 >= 0, xi2 >= 0, xi1 + xi2 <= 1} (math.md §1.2).
+/// Shape functions on the master triangle T = {xi1 >= 0, xi2 >= 0, xi1 + xi2 <= 1} (theory.md §1.2), below both
+/// the mesh (P2 geometry of new nodes) and the discretization.
 /// Barycentrics lam1 = 1 - xi1 - xi2, lam2 = xi1, lam3 = xi2. Node order: vertices (0,0), (1,0), (0,1),
 /// then mid-sides (1/2,0), (1/2,1/2), (0,1/2). Pure point functions, usable inside kernels.
 #include <Kokkos_Macros.hpp>
 
-namespace shellfrac::disc {
+namespace shellfrac {
 
 /// Parametric coordinates of the 6 P2 nodes (the first 3 are the P1 nodes).
 constexpr double p2_node_xi[6][2] = {{0, 0}, {1, 0}, {0, 1}, {0.5, 0}, {0.5, 0.5}, {0, 0.5}};
@@ -20,7 +21,7 @@ KOKKOS_INLINE_FUNCTION void p1_shape(double xi1, double xi2, double L[3], double
   dL[2][0] = 0.0, dL[2][1] = 1.0;
 }
 
-/// P2 shape functions N_A (A = 0..5) and their parametric derivatives dN[A][alpha] (math.md §1.2).
+/// P2 shape functions N_A (A = 0..5) and their parametric derivatives dN[A][alpha] (theory.md §1.2).
 KOKKOS_INLINE_FUNCTION void p2_shape(double xi1, double xi2, double N[6], double dN[6][2]) {
   const double l1 = 1.0 - xi1 - xi2, l2 = xi1, l3 = xi2;
   const double d1[2] = {-1.0, -1.0}, d2[2] = {1.0, 0.0}, d3[2] = {0.0, 1.0};
@@ -51,4 +52,4 @@ KOKKOS_INLINE_FUNCTION void shape(int order, double xi1, double xi2, double N[6]
   }
 }
 
-}  // namespace shellfrac::disc
+}  // namespace shellfrac

@@ -20,7 +20,7 @@ constexpr int num_nodes_tri3 = 3;    ///< linear triangle
 constexpr int num_nodes_tri6 = 6;    ///< quadratic triangle: vertices 1,2,3 then mid-sides 4(1-2), 5(2-3), 6(3-1)
 
 /// Local edge k of a triangle runs from vertex edge_vertices[k][0] to edge_vertices[k][1] (counter-clockwise);
-/// its mid-side node (P2) is node 3 + k.  (math.md §1.2; same as Exodus TRI6 and Gmsh triangle6 ordering)
+/// its mid-side node (P2) is node 3 + k.  (theory.md §1.2; same as Exodus TRI6 and Gmsh triangle6 ordering)
 constexpr int edge_vertex[3][2] = {{0, 1}, {1, 2}, {2, 0}};
 
 }  // namespace shellfrac

@@ -1,4 +1,4 @@
-#include "shellfrac/dist/distributed_mesh.hpp"
+#include "shellfrac/decomposition/distributed_mesh.hpp"
 
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_OrdinalTraits.hpp>
@@ -7,11 +7,11 @@
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
-#include "shellfrac/dist/element_maps.hpp"
+#include "shellfrac/decomposition/element_maps.hpp"
 #include "shellfrac/mesh/generators.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
 
-namespace shellfrac::dist {
+namespace shellfrac::decomposition {
 
 namespace {
 
@@ -182,4 +182,4 @@ LocalId DistributedMesh::local_id(GlobalId gid) const {
   return -1;
 }
 
-}  // namespace shellfrac::dist
+}  // namespace shellfrac::decomposition

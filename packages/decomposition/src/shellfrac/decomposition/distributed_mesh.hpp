@@ -1,6 +1,6 @@
 #pragma once
 /// \file distributed_mesh.hpp
-/// The distributed DG element model (paper §5; style-anchors §5, §10.7). Elements, not nodes, are
+/// The distributed DG element model (paper §4.3, §5; docs/parallel.md). Elements, not nodes, are
 /// distributed. Each rank has
 ///  * owned elements: those the partition gives it, in ascending global id;
 ///  * an overlap list: owned elements first, then exactly one ghost layer (every element that shares an
@@ -26,7 +26,7 @@ namespace shellfrac::mesh {
 struct SerialMesh;
 }
 
-namespace shellfrac::dist {
+namespace shellfrac::decomposition {
 
 struct ElementMaps;  // element_maps.hpp
 
@@ -79,7 +79,7 @@ class DistributedMesh {
   GlobalId mesh_node(LocalId le, int a) const { return mesh_node_[le * npe_ + a]; }
   /// Global DG node id of node a of overlap element le.
   GlobalId dg_node_gid(LocalId le, int a) const { return element_gid_[le] * npe_ + a; }
-  /// Reference director (math.md §1.5: averaged unit normal at the mesh vertex) at vertex a (0..2) of le.
+  /// Reference director (theory.md §1.5: averaged unit normal at the mesh vertex) at vertex a (0..2) of le.
   const Vec3& reference_director(LocalId le, int a) const { return directors_[le * 3 + a]; }
   /// Neighbour across local edge k of overlap element le: local overlap id (-1 if none or not in overlap)
   /// and its local edge.
@@ -93,7 +93,7 @@ class DistributedMesh {
   /// Boundary edges of owned elements.
   const std::vector<LocalBoundaryEdge>& boundary_edges() const { return boundary_; }
 
-  /// Tpetra maps, Import and Export (include shellfrac/dist/element_maps.hpp to use).
+  /// Tpetra maps, Import and Export (include shellfrac/decomposition/element_maps.hpp to use).
   const ElementMaps& maps() const { return *maps_; }
 
  private:
@@ -112,4 +112,4 @@ class DistributedMesh {
   std::unique_ptr<ElementMaps> maps_;
 };
 
-}  // namespace shellfrac::dist
+}  // namespace shellfrac::decomposition

@@ -3,7 +3,7 @@
 /// Tpetra side of the distributed mesh (heavy header: include only where Tpetra objects are used).
 /// Element rows: `owned` is one-to-one; `overlap` = owned GIDs first then ghosts (the one ghost layer);
 /// `ghosts` = the ghost GIDs alone, in the overlap's order.
-/// Data flow every step (style-anchors §10.7): owned -> Import(INSERT) -> ghosts -> kernels. The per-step
+/// Data flow every step (docs/parallel.md): owned -> Import(INSERT) -> ghosts -> kernels. The per-step
 /// transfers use `ghost_importer`, so that only the rows other ranks hold as ghosts (`send_rows`) are packed and
 /// only the ghost rows are received: the owned rows are never copied (at np = 1 nothing moves at all).
 #include <Tpetra_Export.hpp>
@@ -15,7 +15,7 @@
 
 #include "shellfrac/core/types.hpp"
 
-namespace shellfrac::dist {
+namespace shellfrac::decomposition {
 
 using map_type = Tpetra::Map<>;
 using tpetra_lo = map_type::local_ordinal_type;
@@ -39,4 +39,4 @@ struct ElementMaps {
   std::vector<LocalId> send_rows;  ///< owned rows that another rank holds as a ghost (sorted, unique)
 };
 
-}  // namespace shellfrac::dist
+}  // namespace shellfrac::decomposition

@@ -1,4 +1,4 @@
-#include "shellfrac/dist/partitioner.hpp"
+#include "shellfrac/decomposition/partitioner.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -6,11 +6,11 @@
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
-#include "shellfrac/dist/partitioner_detail.hpp"
+#include "shellfrac/decomposition/partitioner_detail.hpp"
 #include "shellfrac/mesh/edge_topology.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
 
-namespace shellfrac::dist {
+namespace shellfrac::decomposition {
 
 namespace {
 const std::vector<std::string>& zoltan2_algorithms() {
@@ -74,4 +74,4 @@ std::vector<int> partition_elements(const mesh::SerialMesh& mesh, const mesh::Ed
   return detail::partition_zoltan2(mesh, topo, nparts, params.zoltan2_algorithm, params.imbalance_tolerance, comm);
 }
 
-}  // namespace shellfrac::dist
+}  // namespace shellfrac::decomposition

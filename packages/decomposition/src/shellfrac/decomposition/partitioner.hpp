@@ -20,7 +20,7 @@ struct SerialMesh;
 struct EdgeTopology;
 }  // namespace shellfrac::mesh
 
-namespace shellfrac::dist {
+namespace shellfrac::decomposition {
 
 /// Validated partitioning options (deck sublist "Partitioning").
 struct PartitionParams {
@@ -41,4 +41,4 @@ struct PartitionParams {
 std::vector<int> partition_elements(const mesh::SerialMesh& mesh, const mesh::EdgeTopology& topo, int nparts,
                                     const PartitionParams& params, MPI_Comm comm = MPI_COMM_WORLD);
 
-}  // namespace shellfrac::dist
+}  // namespace shellfrac::decomposition

@@ -1,6 +1,6 @@
 #pragma once
 /// \file partitioner_detail.hpp
-/// Internal to shellfrac_dist: the two back ends of partition_elements(). Not installed, not for callers.
+/// Internal to shellfrac_decomposition: the two back ends of partition_elements(). Not installed, not for callers.
 #include <mpi.h>
 
 #include <string>
@@ -11,7 +11,7 @@ struct SerialMesh;
 struct EdgeTopology;
 }  // namespace shellfrac::mesh
 
-namespace shellfrac::dist::detail {
+namespace shellfrac::decomposition::detail {
 
 /// METIS_PartGraphKway on the element dual graph, run on rank 0 and broadcast. Requires
 /// 1 < nparts < num_elements. Collective.
@@ -24,4 +24,4 @@ std::vector<int> partition_metis(const mesh::EdgeTopology& topo, long long num_e
 std::vector<int> partition_zoltan2(const mesh::SerialMesh& mesh, const mesh::EdgeTopology& topo, int nparts,
                                    const std::string& algorithm, double imbalance_tolerance, MPI_Comm comm);
 
-}  // namespace shellfrac::dist::detail
+}  // namespace shellfrac::decomposition::detail

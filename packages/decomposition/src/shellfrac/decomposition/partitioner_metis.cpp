@@ -9,10 +9,10 @@
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
-#include "shellfrac/dist/partitioner_detail.hpp"
+#include "shellfrac/decomposition/partitioner_detail.hpp"
 #include "shellfrac/mesh/edge_topology.hpp"
 
-namespace shellfrac::dist::detail {
+namespace shellfrac::decomposition::detail {
 
 namespace {
 const char* metis_status(int rc) {
@@ -80,4 +80,4 @@ std::vector<int> partition_metis(const mesh::EdgeTopology& topo, long long num_e
   return part;
 }
 
-}  // namespace shellfrac::dist::detail
+}  // namespace shellfrac::decomposition::detail

@@ -17,11 +17,11 @@
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
-#include "shellfrac/dist/partitioner_detail.hpp"
+#include "shellfrac/decomposition/partitioner_detail.hpp"
 #include "shellfrac/mesh/edge_topology.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
 
-namespace shellfrac::dist::detail {
+namespace shellfrac::decomposition::detail {
 
 namespace {
 
@@ -154,4 +154,4 @@ std::vector<int> partition_zoltan2(const mesh::SerialMesh& mesh, const mesh::Edg
   return part;
 }
 
-}  // namespace shellfrac::dist::detail
+}  // namespace shellfrac::decomposition::detail

@@ -1,14 +1,14 @@
 #pragma once
 /// \file dg_element.hpp
-/// The DG shell operator on one element and on one interface (math.md §5; paper §4.2, eqs. 41-44).
+/// The DG shell operator on one element and on one interface (theory.md §5; paper §4.2, eqs. 41-44).
 ///  * DgElementRef: reference data of an element, constant in time (area-point geometry, shape function
 ///    derivatives, reference strain offsets, edge-point data and lifting weights W).
-///  * dg_kinematics: the DG derivatives by lifting (math.md §5.2) at the area points (a_i, d_i, t_h);
+///  * dg_kinematics: the DG derivatives by lifting (theory.md §5.2) at the area points (a_i, d_i, t_h);
 ///    the first stage of dg_element_forces, exposed for verification.
-///  * dg_element_forces: DG derivatives by lifting of the jumps over the element's lifted edges (math.md
+///  * dg_element_forces: DG derivatives by lifting of the jumps over the element's lifted edges (theory.md
 ///    §5.2), strains, resultants (a point law passed in), the element's internal forces on its own nodes
 ///    and its lifting fluxes on the neighbours' edge nodes (§5.4). Returns the element's strain energy.
-///  * dg_penalty_forces: the interface stabilization forces (§5.5, SEED eq. 52) and energy.
+///  * dg_penalty_forces: the interface stabilization forces (§5.5, paper eq. 52) and energy.
 /// Sign convention: forces are gradients of the energy (internal forces); the acceleration is
 /// (f_ext - f)/m. Spatial director moments g (3-vectors) are projected with Lambda-bar^T by the caller.
 /// Pure functions on plain arrays, usable in Kokkos kernels; they write only their own outputs, so the
@@ -25,7 +25,7 @@
 #include "shellfrac/disc/shell_strains.hpp"
 #include "shellfrac/disc/small_tensor.hpp"
 #include "shellfrac/disc/stress_power.hpp"
-#include "shellfrac/disc/triangle_basis.hpp"
+#include "shellfrac/core/triangle_basis.hpp"
 
 namespace shellfrac::disc {
 
@@ -61,14 +61,14 @@ KOKKOS_INLINE_FUNCTION EdgePointShapes edge_point_shapes(double s, double s_othe
 
 /// Reference data of one local edge of an element.
 struct DgEdgeRef {
-  double omega[num_edge_points];         ///< omega_g = w_g |dX/ds|: reference arc-length weights (math.md §1.4)
+  double omega[num_edge_points];         ///< omega_g = w_g |dX/ds|: reference arc-length weights (theory.md §1.4)
   double nu_cov[num_edge_points][2];     ///< nu_{E,alpha}(g) = nu_E . G_alpha, nu_E the outward reference co-normal
   double s_nbr[num_edge_points];         ///< edge parameter of the matched point in the neighbour (s or 1 - s)
   double Wu[num_edge_points][2][3];      ///< position lifting weights W^u_{g,alpha} = 1/2 omega nu_alpha Mpsi^-1 psi
   double Wt[num_edge_points][2];         ///< director lifting weights W^t_{g,alpha} = 1/2 omega nu_alpha / |E|
 };
 
-/// Reference data of one element (math.md §5.3).
+/// Reference data of one element (theory.md §5.3).
 struct DgElementRef {
   double wj0[num_area_points];           ///< w_q j0_q
   double Jinv[num_area_points][2][2];    ///< (J^-1)_{alpha i}
@@ -97,7 +97,7 @@ KOKKOS_INLINE_FUNCTION void inverse33(const double A[3][3], double B[3][3]) {
 }  // namespace detail
 
 /// Builds the reference data of an element from its reference node positions X (6 P2 nodes) and the
-/// reference directors T0 at its 3 vertices (math.md §1.5: equal in every element sharing a vertex).
+/// reference directors T0 at its 3 vertices (theory.md §1.5: equal in every element sharing a vertex).
 /// nbr_same_direction[k]: the neighbour across edge k traverses the edge in the same direction (false for
 /// consistently oriented neighbours; irrelevant for edges without a neighbour).
 KOKKOS_INLINE_FUNCTION void build_dg_element_ref(const double X[6][3], const double T0[3][3],
@@ -139,7 +139,7 @@ KOKKOS_INLINE_FUNCTION void build_dg_element_ref(const double X[6][3], const dou
   }
   double Minv[3][3];
   detail::inverse33(Mpsi, Minv);
-  // Edges: arc-length weights, outward co-normals and lifting weights (math.md §1.4, §5.2).
+  // Edges: arc-length weights, outward co-normals and lifting weights (theory.md §1.4, §5.2).
   for (int k = 0; k < 3; ++k) {
     const int vi = edge_node(k, 0), vj = edge_node(k, 1);
     DgEdgeRef& E = R.edge[k];
@@ -156,7 +156,7 @@ KOKKOS_INLINE_FUNCTION void build_dg_element_ref(const double X[6][3], const dou
       normalize3(tau);
       cross3(G[0], G[1], n0);
       normalize3(n0);
-      cross3(tau, n0, nu);  // outward for a counter-clockwise element (math.md §1.4 check)
+      cross3(tau, n0, nu);  // outward for a counter-clockwise element (theory.md §1.4 check)
       E.nu_cov[g][0] = dot3(nu, G[0]);
       E.nu_cov[g][1] = dot3(nu, G[1]);
       E.s_nbr[g] = nbr_same_direction[k] ? s : 1 - s;
@@ -173,7 +173,7 @@ KOKKOS_INLINE_FUNCTION void build_dg_element_ref(const double X[6][3], const dou
       for (int al = 0; al < 2; ++al) R.edge[k].Wt[g][al] = 0.5 * R.edge[k].omega[g] * R.edge[k].nu_cov[g][al] / R.area;
 }
 
-/// DG kinematics of one element at its area points (math.md §5.2, §5.4 "forward evaluation"):
+/// DG kinematics of one element at its area points (theory.md §2, §5.2):
 /// a_i = d^DG_i phi_h (P1 lifting of the position jumps), d_i = d^DG_i t_h (P0 lifting of the director
 /// jumps), both in the local Cartesian reference frame, and the interpolated director t_h(xi_q).
 ///   x[6][3], t[3][3]: the element's current node positions and vertex directors.
@@ -184,7 +184,7 @@ KOKKOS_INLINE_FUNCTION void build_dg_element_ref(const double X[6][3], const dou
 KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const double x[6][3], const double t[3][3],
                                           const bool lift[3], const double xn[3][3][3], const double tn[3][2][3],
                                           ShellKinematics kin[num_area_points]) {
-  // 1. Liftings of the one-sided jumps [u]^E = u^E - u^E' (math.md §5.2).
+  // 1. Liftings of the one-sided jumps [u]^E = u^E - u^E' (theory.md §5.2).
   double Rx[3][2][3][3] = {};  // [k][alpha][component][psi]
   double Rt[3][2][3] = {};     // [k][alpha][component]
   for (int k = 0; k < 3; ++k) {
@@ -204,7 +204,7 @@ KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const double x[
       }
     }
   }
-  // 2. Area points: DG derivatives (math.md §5.2).
+  // 2. Area points: DG derivatives (theory.md §5.2).
   for (int q = 0; q < num_area_points; ++q) {
     for (int c = 0; c < 3; ++c) {
       double aa[2], dd[2];
@@ -227,23 +227,27 @@ KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const double x[
   }
 }
 
-/// Internal forces of one element (math.md §5.4) with the point law `law(eps, gam, rho, N, Q, M)` returning
-/// the stored energy per unit reference area. The law is called exactly once per area point, in the order
-/// q = 0 .. num_area_points - 1 (a law with internal state per point may count its calls).
+/// The traction on an element across each of its edges at the edge points (theory.md §9.5 step 1), per unit
+/// reference length, from the P1 L2 projections of its resultants: at[k][g][0..2] = sum_alpha (Pi n^alpha)(xi_g)
+/// nu_{E,alpha} (the force that the material beyond edge k exerts on E), at[k][g][3..5] the same for m^alpha,
+/// with nu_E the element's outward co-normal. Edge points in the element's own edge order.
+struct EdgeTractions {
+  double at[3][num_edge_points][6];
+};
+
+/// Internal forces of one element (theory.md §5.4) with the point law `law(q, eps, gam, rho, N, Q, M)` at
+/// area point q, returning the stored energy per unit reference area. The law is called exactly once per area
+/// point, in the order q = 0 .. num_area_points - 1.
 ///   x[6][3], t[3][3], lift[3], xn, tn: as for dg_kinematics.
 /// Outputs (overwritten): f[6][3] and g[3][3] on the element's own nodes; fn[k][j][3], gn[k][j][3] on the
-/// neighbour's edge nodes (neighbour's edge-local order), zero where lift[k] is false.
-/// Optional output edge_nm (if not null): at each edge point g of each edge k, the element's edge force and
-/// couple per unit reference length from the P1 L2 projections of its resultants (math.md §9.5 step 1):
-/// edge_nm[k][g][0..2] = sum_alpha (Pi n^alpha)(xi_g) nu_{E,alpha}, edge_nm[k][g][3..5] the same for m^alpha,
-/// with nu_E the element's outward co-normal: the traction on E across its edge (the force per unit length
-/// that the material beyond the edge exerts on E).
+/// neighbour's edge nodes (neighbour's edge-local order), zero where lift[k] is false; the edge tractions if
+/// `edge_tractions` is not null (the nucleation check needs them).
 /// Returns the element's strain energy sum_q w_q j0_q W.
 template <class Law>
 KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const double x[6][3], const double t[3][3],
                                                 const bool lift[3], const double xn[3][3][3], const double tn[3][2][3],
                                                 const Law& law, double f[6][3], double g[3][3], double fn[3][3][3],
-                                                double gn[3][2][3], double (*edge_nm)[num_edge_points][6] = nullptr) {
+                                                double gn[3][2][3], EdgeTractions* edge_tractions = nullptr) {
   // 1.-2. Liftings of the jumps and DG kinematics at the area points.
   ShellKinematics kins[num_area_points];
   dg_kinematics(R, x, t, lift, xn, tn, kins);
@@ -252,13 +256,13 @@ KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const dou
   for (int a = 0; a < 3; ++a) g[a][0] = g[a][1] = g[a][2] = 0;
   double Pix[2][3][3] = {};  // [alpha][component][psi]: sum_q w j0 n^alpha (x) psi
   double Pit[2][3] = {};     // [alpha][component]:      sum_q w j0 m^alpha
-  double Pim[2][3][3] = {};  // [alpha][component][psi]: sum_q w j0 m^alpha (x) psi (only for edge_nm)
+  double Pim[2][3][3] = {};  // [alpha][component][psi]: sum_q w j0 m^alpha (x) psi (only for edge tractions)
   double energy = 0;
   for (int q = 0; q < num_area_points; ++q) {
     const ShellKinematics& kin = kins[q];
     double eps[3], gam[2], rho[3], N[3], Q[2], M[3];
     compute_strains(kin, R.ref[q], eps, gam, rho);
-    energy += R.wj0[q] * law(eps, gam, rho, N, Q, M);
+    energy += R.wj0[q] * law(q, eps, gam, rho, N, Q, M);
     double n[2][3], m[2][3], l[3];
     stress_power_vectors(kin, N, Q, M, n, m, l);
     const double w = R.wj0[q];
@@ -271,14 +275,14 @@ KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const dou
         for (int a = 0; a < 3; ++a) g[a][c] += w * R.dL[a][al] * ma;
         for (int b = 0; b < 3; ++b) Pix[al][c][b] += w * na * R.L[q][b];
         Pit[al][c] += w * ma;
-        if (edge_nm)
+        if (edge_tractions)
           for (int b = 0; b < 3; ++b) Pim[al][c][b] += w * ma * R.L[q][b];
       }
     for (int a = 0; a < 3; ++a)
       for (int c = 0; c < 3; ++c) g[a][c] += w * R.L[q][a] * l[c];
   }
   // 2''. Edge tractions of the projected resultants: W^u_{g,alpha} = 1/2 omega_g nu_alpha Mpsi^-1 psi(xi_g).
-  if (edge_nm)
+  if (edge_tractions)
     for (int k = 0; k < 3; ++k)
       for (int gp = 0; gp < num_edge_points; ++gp) {
         const DgEdgeRef& E = R.edge[k];
@@ -287,10 +291,10 @@ KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const dou
           double n = 0, m = 0;
           for (int al = 0; al < 2; ++al)
             for (int b = 0; b < 3; ++b) n += Pix[al][c][b] * E.Wu[gp][al][b], m += Pim[al][c][b] * E.Wu[gp][al][b];
-          edge_nm[k][gp][c] = s * n, edge_nm[k][gp][3 + c] = s * m;
+          edge_tractions->at[k][gp][c] = s * n, edge_tractions->at[k][gp][3 + c] = s * m;
         }
       }
-  // 3. Lifting fluxes F_g, H_g on own and neighbour edge nodes (math.md §5.4).
+  // 3. Lifting fluxes F_g, H_g on own and neighbour edge nodes (theory.md §5.4).
   for (int k = 0; k < 3; ++k) {
     for (int j = 0; j < 3; ++j) fn[k][j][0] = fn[k][j][1] = fn[k][j][2] = 0;
     for (int j = 0; j < 2; ++j) gn[k][j][0] = gn[k][j][1] = gn[k][j][2] = 0;
@@ -337,7 +341,7 @@ KOKKOS_INLINE_FUNCTION void build_dg_interface_ref(const DgEdgeRef& minus_edge, 
   I.inv_he = 1.0 / he;
 }
 
-/// Stabilization (penalty) forces of an intact interface (math.md §5.5; SEED eqs. 42-44, 52):
+/// Stabilization (penalty) forces of an intact interface (theory.md §5.5; paper eqs. 42-44, 52):
 /// [[phi]] = phi^- - phi^+, n_stab = beta_x/h_e [[phi]], m_stab = beta_T/h_e [[t]]. Inputs are the edge
 /// nodes of each side in its own edge-local order. Outputs (overwritten) are forces on those nodes.
 /// Returns the stabilization energy U_stab.

@@ -1,6 +1,6 @@
 #pragma once
 /// \file director.hpp
-/// Director kinematics on the unit sphere S^2 (math.md §7.2, §7.3, §5.4, §10.1; paper Appendix A,
+/// Director kinematics on the unit sphere S^2 (theory.md §7.2, §7.3, §5.4, §10.1; paper Appendix A,
 /// eqs. A.1-A.4 and Algorithm 1, after Simo et al.).
 ///
 /// Each director node carries a unit director t and a rotation Lambda (double[3][3], row-major,
@@ -18,12 +18,12 @@
 
 namespace shellfrac::disc {
 
-/// Below this rotation angle update_director is the identity (Algorithm 1 step 2 early exit, math.md §7.3).
+/// Below this rotation angle update_director is the identity (Algorithm 1 step 2 early exit, theory.md §7.3).
 constexpr double director_zero_angle = 1e-300;
-/// Below this rotation angle the trigonometric ratios use their Taylor series (math.md §7.3).
+/// Below this rotation angle the trigonometric ratios use their Taylor series (theory.md §7.3).
 constexpr double director_series_angle = 1e-4;
 
-/// Initial rotation Lambda^0 with Lambda^0 E3 = t0 (paper eq. A.1, math.md §7.2): Rodrigues' formula
+/// Initial rotation Lambda^0 with Lambda^0 E3 = t0 (paper eq. A.1, theory.md §7.2): Rodrigues' formula
 ///   Lambda = (t0.E3) 1 + hat(E3 x t0) + (E3 x t0) (x) (E3 x t0) / (1 + t0.E3),
 /// i.e. the rotation by the angle phi (cos phi = c = t0.E3, sin phi = |a|) about the axis a = E3 x t0.
 /// t0 must be a unit vector.
@@ -34,7 +34,7 @@ constexpr double director_series_angle = 1e-4;
 /// |a|^2 / (1 + c) when c >= 0 (no cancellation). Note a = (-t0_2, t0_1, 0) is exact in floating point,
 /// so Lambda E3 = (t0_1, t0_2, c) = t0 holds exactly, even arbitrarily close to t0 = -E3.
 /// Singular case (|a| = 0 up to underflow, i.e. t0 = +-E3): a_hat := E1. For t0 = -E3 this gives
-/// diag(1, -1, -1), the rotation by pi about E1 — the CHOICE of math.md §7.2. (The §7.2 threshold
+/// diag(1, -1, -1), the rotation by pi about E1 (theory.md §7.2). (A threshold such as
 /// t0.E3 < -1 + 1e-12 is not needed: the form above stays accurate up to t0 = -E3 itself, and using
 /// diag(1,-1,-1) within the threshold would give |Lambda E3 - t0| up to ~1.4e-6.)
 KOKKOS_INLINE_FUNCTION void initial_rotation(const double t0[3], double L[3][3]) {
@@ -53,13 +53,13 @@ KOKKOS_INLINE_FUNCTION void initial_rotation(const double t0[3], double L[3][3])
     for (int j = 0; j < 3; ++j) L[i][j] = (i == j ? c : 0.0) + A[i][j] + omc * ah[i] * ah[j];
 }
 
-/// out = Lambda-bar T = T_1 Lambda E1 + T_2 Lambda E2 (math.md §5.4, §7.3 step 1; paper after eq. 38).
+/// out = Lambda-bar T = T_1 Lambda E1 + T_2 Lambda E2 (theory.md §5.4, §7.3 step 1; paper after eq. 38).
 KOKKOS_INLINE_FUNCTION void lambda_bar_times(const double L[3][3], const double T[2], double out[3]) {
   const double T0 = T[0], T1 = T[1];
   for (int i = 0; i < 3; ++i) out[i] = L[i][0] * T0 + L[i][1] * T1;
 }
 
-/// out = Lambda-bar^T g = (g . Lambda E1, g . Lambda E2) (math.md §5.4: f_T = Lambda-bar^T g;
+/// out = Lambda-bar^T g = (g . Lambda E1, g . Lambda E2) (theory.md §5.4: f_T = Lambda-bar^T g;
 /// §10.1: constraint vector d = Lambda-bar^T s).
 KOKKOS_INLINE_FUNCTION void lambda_bar_transpose_times(const double L[3][3], const double g[3], double out[2]) {
   const double o0 = L[0][0] * g[0] + L[1][0] * g[1] + L[2][0] * g[2];
@@ -67,13 +67,13 @@ KOKKOS_INLINE_FUNCTION void lambda_bar_transpose_times(const double L[3][3], con
   out[0] = o0, out[1] = o1;
 }
 
-/// Director update by the exponential map on S^2 (paper Algorithm 1, eqs. A.2-A.4; math.md §7.3):
+/// Director update by the exponential map on S^2 (paper Algorithm 1, eqs. A.2-A.4; theory.md §7.3):
 ///   1. dt = Lambda-bar_n dT,  th = |dt|                      (spatial increment, tangent at t_n)
 ///   2. th < 1e-300: t_{n+1} = t_n, Lambda_{n+1} = Lambda_n  (early exit)
 ///      t_{n+1} = cos(th) t_n + (sin(th)/th) dt                                           (A.2)
 ///   3. k = t_n x dt,  dLambda = cos(th) 1 + (sin(th)/th) hat(k) + ((1-cos th)/th^2) k (x) k  (A.3)
 ///   4. Lambda_{n+1} = dLambda Lambda_n                                                    (A.4)
-/// For th < 1e-4: sin(th)/th = 1 - th^2/6, (1-cos th)/th^2 = 1/2 - th^2/24 (series, math.md §7.3).
+/// For th < 1e-4: sin(th)/th = 1 - th^2/6, (1-cos th)/th^2 = 1/2 - th^2/24 (series, theory.md §7.3).
 /// For th >= 1e-4, (1-cos th)/th^2 is evaluated as 2 (sin(th/2)/th)^2 (no cancellation).
 /// dLambda is the rotation by th about k/th: it maps t_n to t_{n+1} and parallel-transports tangent
 /// vectors along the geodesic, so the material 2-vector Tdot needs no transformation.
@@ -118,7 +118,7 @@ KOKKOS_INLINE_FUNCTION void update_director(const double t_n[3], const double L_
 }
 
 /// T <- T - (d . T) d / |d|^2 (no-op if |d| = 0): removes the component of the material 2-vector T along
-/// d. Used for director constraints (math.md §10.1): symmetry plane with unit normal s, d = Lambda-bar^T s;
+/// d. Used for director constraints (theory.md §10.1): symmetry plane with unit normal s, d = Lambda-bar^T s;
 /// hard simple support with edge tangent tau, d = Lambda-bar^T tau. Apply to Tdot, Tddot and dT.
 KOKKOS_INLINE_FUNCTION void project_out(double T[2], const double d[2]) {
   const double dd = d[0] * d[0] + d[1] * d[1];
@@ -128,7 +128,7 @@ KOKKOS_INLINE_FUNCTION void project_out(double T[2], const double d[2]) {
   T[1] -= f * d[1];
 }
 
-/// Optional hygiene (math.md §7.3, "re-orthonormalize Lambda every ~1e4 steps"): Gram-Schmidt on the
+/// Optional hygiene for very long runs (theory.md §7.3; the solver does not need it): Gram-Schmidt on the
 /// columns keeping the direction of column 3 (the director): e3 = c3/|c3|, e1 = normalize(c1 - (c1.e3) e3),
 /// e2 = e3 x e1 (right-handed, det = +1). The caller may then set t = Lambda E3.
 KOKKOS_INLINE_FUNCTION void reorthonormalize(double L[3][3]) {

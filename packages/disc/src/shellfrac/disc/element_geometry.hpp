@@ -1,6 +1,6 @@
 #pragma once
 /// \file element_geometry.hpp
-/// Reference geometry of a P2 shell element at an area quadrature point (math.md §1.4), the element
+/// Reference geometry of a P2 shell element at an area quadrature point (theory.md §1.4), the element
 /// area (tri6 rule, §1.3) and the characteristic length l_E used by the stable time step (§8).
 /// Pure per-element functions on plain arrays: no allocation, no exceptions, usable inside kernels.
 #include <Kokkos_Macros.hpp>
@@ -8,11 +8,11 @@
 
 #include "shellfrac/disc/quadrature.hpp"
 #include "shellfrac/disc/small_tensor.hpp"
-#include "shellfrac/disc/triangle_basis.hpp"
+#include "shellfrac/core/triangle_basis.hpp"
 
 namespace shellfrac::disc {
 
-/// Geometry stored per area quadrature point (math.md §1.4):
+/// Geometry stored per area quadrature point (theory.md §1.4):
 ///  * wj0 = w_q j0_q (rule weight times the reference area Jacobian |G_1 x G_2|),
 ///  * Jinv[alpha][i] = (J^{-1})_{alpha i}, where J_{i alpha} = e_i . G_alpha, so that
 ///    d(.)/dx^i = d(.)/dxi^alpha Jinv[alpha][i],
@@ -36,7 +36,7 @@ KOKKOS_INLINE_FUNCTION void covariant_tangents(const double X[6][3], double xi1,
     }
 }
 
-/// Reference geometry at the point (xi1, xi2) of the master triangle with rule weight w (math.md §1.4).
+/// Reference geometry at the point (xi1, xi2) of the master triangle with rule weight w (theory.md §1.4).
 /// X holds the 6 P2 node positions (vertices, then mid-sides, see triangle_basis.hpp). Requires a
 /// non-degenerate element (|G_1| > 0 and j0 > 0); no check is made here.
 KOKKOS_INLINE_FUNCTION void area_point_geometry(const double X[6][3], double xi1, double xi2, double w,
@@ -70,7 +70,7 @@ KOKKOS_INLINE_FUNCTION double area_jacobian(const double X[6][3], double xi1, do
   return norm3(c);
 }
 
-/// Reference area of the P2 element, sum_q w_q j0_q with the 6-point rule (math.md §1.3, §6).
+/// Reference area of the P2 element, sum_q w_q j0_q with the 6-point rule (theory.md §1.3, §6).
 KOKKOS_INLINE_FUNCTION double element_area(const double X[6][3]) {
   double a = 0.0;
   for (int q = 0; q < tri6_rule.num_points; ++q)
@@ -79,7 +79,7 @@ KOKKOS_INLINE_FUNCTION double element_area(const double X[6][3]) {
 }
 
 /// Characteristic length l_E = 2 Area(vertex triangle) / longest vertex-to-vertex edge, i.e. the
-/// smallest altitude of the vertex triangle (math.md §8). Only the vertices X[0..2] are used.
+/// smallest altitude of the vertex triangle (theory.md §8). Only the vertices X[0..2] are used.
 KOKKOS_INLINE_FUNCTION double characteristic_length(const double X[6][3]) {
   double e[3][3];  // e[k] = edge vectors X1-X0, X2-X1, X0-X2
   for (int k = 0; k < 3; ++k) {

@@ -1,7 +1,7 @@
 #pragma once
 /// \file lumped_mass.hpp
 /// HRZ (Hinton-Rock-Zienkiewicz) lumped translational mass of the 6 P2 position nodes and lumped rotary
-/// inertia of the 3 P1 director nodes of one element (math.md §6):
+/// inertia of the 3 P1 director nodes of one element (theory.md §6):
 ///   m_E = rho-bar0 sum_q w_q j0_q,  d_A = sum_q w_q j0_q N^A(xi_q)^2,  m_A = m_E d_A / sum_B d_B,
 ///   I_a = Ibar0 (sum_q w_q j0_q) c_a / sum_b c_b,  c_a = sum_q w_q j0_q L^a(xi_q)^2,
 /// with the 6-point rule of §1.3. Never row-sum P2 (vertex row sums vanish for affine elements).
@@ -10,7 +10,7 @@
 
 #include "shellfrac/disc/element_geometry.hpp"
 #include "shellfrac/disc/quadrature.hpp"
-#include "shellfrac/disc/triangle_basis.hpp"
+#include "shellfrac/core/triangle_basis.hpp"
 
 namespace shellfrac::disc {
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file quadrature.hpp
-/// Quadrature rules (math.md §1.3). Triangle weights include the master area 1/2, so sum(w) = 1/2.
+/// Quadrature rules (theory.md §1.3). Triangle weights include the master area 1/2, so sum(w) = 1/2.
 ///  * tri6: 6-point degree-4 rule (Strang-Fix / Dunavant): full integration for P2 (mass matrix exact for
 ///    affine elements); the default area rule.
 ///  * tri7: 7-point degree-5 rule (Radon).

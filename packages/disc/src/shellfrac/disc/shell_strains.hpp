@@ -1,7 +1,7 @@
 #pragma once
 /// \file shell_strains.hpp
 /// Shell kinematics at a quadrature point and the strain measures of the single-director Cosserat
-/// shell (math.md §2). Everything is expressed in the local orthonormal reference basis {e_1, e_2}:
+/// shell (theory.md §2). Everything is expressed in the local orthonormal reference basis {e_1, e_2}:
 /// a_i = a_alpha (J^{-1})_{alpha i}, d_i = d_alpha (J^{-1})_{alpha i}, i = 1,2. Pure point functions
 /// on plain arrays, usable inside Kokkos kernels (no allocation, no exceptions, no std containers).
 ///
@@ -17,18 +17,18 @@ namespace shellfrac::disc {
 struct ShellKinematics {
   double a[2][3];  ///< a_i = d^DG_i phi_h, in the local Cartesian reference frame (already times J^{-1})
   double d[2][3];  ///< d_i = d^DG_i t_h, likewise
-  double t[3];     ///< t_h(xi_q): the interpolated director, NOT normalized (math.md §2 NOTE)
+  double t[3];     ///< t_h(xi_q): the interpolated director, NOT normalized (theory.md §2)
 };
 
-/// Reference offsets of the shear and bending strains at one quadrature point (math.md §2), Voigt.
+/// Reference offsets of the shear and bending strains at one quadrature point (theory.md §2), Voigt.
 struct ShellReference {
   double gam0[2];  ///< gam0_i = a0_i . t0
   double rho0[3];  ///< [rho0_11, rho0_22, 2 rho0_12], rho0_ij = 1/2 (a0_i . d0_j + a0_j . d0_i)
 };
 
 
-/// Reference offsets from the reference kinematics kin0 (a0_i, d0_i, t0). math.md §2 has a0_i = e_i
-/// exactly; the offsets are nevertheless computed with the given a0_i, so that the shear and bending
+/// Reference offsets from the reference kinematics kin0 (a0_i, d0_i, t0). theory.md §2: a0_i = e_i
+/// in exact arithmetic; the offsets are nevertheless computed with the given a0_i, so that the shear and bending
 /// strains vanish exactly in the reference state whatever the frame of the reference kinematics.
 KOKKOS_INLINE_FUNCTION ShellReference make_shell_reference(const ShellKinematics& kin0) {
   ShellReference ref{};
@@ -40,7 +40,7 @@ KOKKOS_INLINE_FUNCTION ShellReference make_shell_reference(const ShellKinematics
   return ref;
 }
 
-/// Strain measures of math.md §2 in Voigt form:
+/// Strain measures of theory.md §2 in Voigt form:
 ///   eps_ij = 1/2 (a_i . a_j - delta_ij),  gam_i = a_i . t - gam0_i,
 ///   rho_ij = 1/2 (a_i . d_j + a_j . d_i) - rho0_ij.
 /// Outputs eps[3] = [eps_11, eps_22, 2 eps_12], gam[2], rho[3] = [rho_11, rho_22, 2 rho_12].

@@ -1,6 +1,6 @@
 #pragma once
 /// \file stable_time_step.hpp
-/// Element-by-element stable time step estimate (math.md §8):
+/// Element-by-element stable time step estimate (theory.md §8):
 ///   c_L = sqrt(E / (rho (1 - nu^2))),  c_S = sqrt(G / rho),  G = E / (2 (1 + nu)),
 ///   omega_mem = (c_L / l_E) sqrt(40 + 20 c_x),
 ///   omega_rot = sqrt(12 kappa c_S^2 / (h^2 s_I) + (c_L / l_E)^2 (40 + 20 c_T)),
@@ -25,7 +25,7 @@ struct StableStepParams {
 };
 
 /// Highest element frequencies of the membrane (omega_mem) and director (omega_rot) estimates of
-/// math.md §8 for an element with characteristic length l_E (see characteristic_length()).
+/// theory.md §8 for an element with characteristic length l_E (see characteristic_length()).
 KOKKOS_INLINE_FUNCTION void element_max_frequency(const StableStepParams& p, double l_E, double& omega_mem,
                                                   double& omega_rot) {
   const double cL2 = p.E / (p.rho * (1.0 - p.nu * p.nu));

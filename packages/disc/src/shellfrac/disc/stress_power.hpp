@@ -1,6 +1,6 @@
 #pragma once
 /// \file stress_power.hpp
-/// Spatial stress-power vectors n^i, m^i, l of SEED eq. (8) from the resultants (math.md §3.2):
+/// Spatial stress-power vectors n^i, m^i, l of paper eq. (8) from the resultants (theory.md §3.2):
 ///   n^i = N^{ij} a_j + Q^i t + M^{ij} d_j,   m^i = M^{ij} a_j,   l = Q^i a_i,
 /// with N^{ij} = [[N11, N12], [N12, N22]] and M^{ij} likewise from the Voigt vectors [X11, X22, X12].
 /// They are the exact gradient of the stored energy W with respect to a_i, d_i and t (local frame).

@@ -1,11 +1,11 @@
 #pragma once
-/// \file exodus_check.hpp
+/// \file exodus_api.hpp
 /// Internal helpers around the Exodus II C API (libexodusii 6.02), shared by shellfrac::io (results) and
 /// shellfrac::meshio (meshes). Not part of the public API: include it only from .cpp files.
 ///  * SHELLFRAC_EXO_CHECK(call, msg): a failed call (return < 0) throws shellfrac::Error (writing; our fault or
 ///    the file system's). Positive returns are Exodus warnings and are accepted.
 ///  * SHELLFRAC_EXO_INPUT_CHECK(call, msg): the same, but throws shellfrac::InputError (reading a user's file).
-///  * exo::File owns an open file id; files are opened/created with double words and the 64-bit integer API.
+///  * exodus::File owns an open file id; files are opened/created with double words and the 64-bit integer API.
 #include <exodusII.h>
 
 #include <algorithm>
@@ -17,7 +17,7 @@
 
 #include "shellfrac/core/error.hpp"
 
-namespace shellfrac::io::exo {
+namespace shellfrac::exodus {
 
 /// The Exodus library's last error message ("ex_open: ... (code -51)"), for exception texts.
 inline std::string last_error() {
@@ -154,19 +154,19 @@ inline std::string upper(std::string s) {
   return s;
 }
 
-}  // namespace shellfrac::io::exo
+}  // namespace shellfrac::exodus
 
 /// Checks an Exodus call made while writing: a negative return throws shellfrac::Error with `msg` and the
 /// library's message.
 #define SHELLFRAC_EXO_CHECK(call, msg)                                                                    \
   do {                                                                                                  \
     const int shellfrac_exo_rc_ = (call);                                                               \
-    SHELLFRAC_REQUIRE(shellfrac_exo_rc_ >= 0, msg << ": " #call " failed: " << ::shellfrac::io::exo::last_error()); \
+    SHELLFRAC_REQUIRE(shellfrac_exo_rc_ >= 0, msg << ": " #call " failed: " << ::shellfrac::exodus::last_error()); \
   } while (0)
 
 /// Checks an Exodus call made while reading a user's file: a negative return throws shellfrac::InputError.
 #define SHELLFRAC_EXO_INPUT_CHECK(call, msg)                                                              \
   do {                                                                                                  \
     const int shellfrac_exo_rc_ = (call);                                                               \
-    SHELLFRAC_INPUT_REQUIRE(shellfrac_exo_rc_ >= 0, msg << ": " << ::shellfrac::io::exo::last_error());   \
+    SHELLFRAC_INPUT_REQUIRE(shellfrac_exo_rc_ >= 0, msg << ": " << ::shellfrac::exodus::last_error());   \
   } while (0)

@@ -14,7 +14,7 @@
 #include <sstream>
 
 #include "shellfrac/core/error.hpp"
-#include "shellfrac/io/exodus_check.hpp"
+#include "shellfrac/exodus/exodus_api.hpp"
 
 namespace shellfrac::io {
 
@@ -64,14 +64,14 @@ class FileWriter {
     for (std::size_t i = 0; i < ne; ++i) {
       SHELLFRAC_REQUIRE(l.element_block[i] >= 0 && l.element_block[i] < static_cast<int>(l.block_ids.size()),
                         path << ": element " << l.element_gids[i] << " has block index " << l.element_block[i]);
-      SHELLFRAC_REQUIRE(l.element_gids[i] >= 0 && (l.element_gids[i] + 1) * npe <= exo::max_stored_int,
+      SHELLFRAC_REQUIRE(l.element_gids[i] >= 0 && (l.element_gids[i] + 1) * npe <= exodus::max_stored_int,
                         path << ": element gid " << l.element_gids[i] << " is out of the 32-bit Exodus id range");
       SHELLFRAC_REQUIRE(i == 0 || l.element_gids[i - 1] < l.element_gids[i],
                         path << ": element gids are not strictly ascending at " << l.element_gids[i]);
     }
-    exo::check_name_lengths(l.block_names, "element block", path);
-    exo::check_name_lengths(l.nodal_names, "nodal variable", path);
-    exo::check_name_lengths(l.element_names, "element variable", path);
+    exodus::check_name_lengths(l.block_names, "element block", path);
+    exodus::check_name_lengths(l.nodal_names, "nodal variable", path);
+    exodus::check_name_lengths(l.element_names, "element variable", path);
 
     num_elements_ = ne;
     num_nodes_ = ne * npe;
@@ -84,8 +84,8 @@ class FileWriter {
     block_elements_.assign(l.block_ids.size(), {});
     for (std::size_t i = 0; i < ne; ++i) block_elements_[l.element_block[i]].push_back(i);
 
-    file_ = exo::create(path);
-    SHELLFRAC_REQUIRE(file_.is_open(), path << ": cannot create the results file: " << exo::last_error());
+    file_ = exodus::create(path);
+    SHELLFRAC_REQUIRE(file_.is_open(), path << ": cannot create the results file: " << exodus::last_error());
     const int id = file_.id();
 
     ex_init_params p{};
@@ -95,7 +95,7 @@ class FileWriter {
     p.num_elem = static_cast<std::int64_t>(ne);
     p.num_elem_blk = static_cast<std::int64_t>(l.block_ids.size());
     SHELLFRAC_EXO_CHECK(ex_put_init_ext(id, &p), path);
-    SHELLFRAC_EXO_CHECK(exo::put_info(id, l.info), path);
+    SHELLFRAC_EXO_CHECK(exodus::put_info(id, l.info), path);
 
     {
       std::vector<double> x(num_file_nodes_, 0.0), y(num_file_nodes_, 0.0), z(num_file_nodes_, 0.0);
@@ -124,7 +124,7 @@ class FileWriter {
       SHELLFRAC_EXO_CHECK(ex_put_conn(id, EX_ELEM_BLOCK, block_ids_[b], conn.data(), nullptr, nullptr),
                           path << ": element block " << block_ids_[b]);
     }
-    SHELLFRAC_EXO_CHECK(exo::put_names(id, EX_ELEM_BLOCK, l.block_names), path);
+    SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_ELEM_BLOCK, l.block_names), path);
     if (ne > 0) {
       std::vector<std::int64_t> node_map(num_nodes_);
       for (std::size_t i = 0; i < ne; ++i)
@@ -132,17 +132,17 @@ class FileWriter {
       SHELLFRAC_EXO_CHECK(ex_put_id_map(id, EX_NODE_MAP, node_map.data()), path);
       SHELLFRAC_EXO_CHECK(ex_put_id_map(id, EX_ELEM_MAP, elem_map.data()), path);
     } else {
-      const std::int64_t placeholder_id = exo::max_stored_int;
+      const std::int64_t placeholder_id = exodus::max_stored_int;
       SHELLFRAC_EXO_CHECK(ex_put_id_map(id, EX_NODE_MAP, &placeholder_id), path);
     }
 
     if (num_nodal_ > 0) {
       SHELLFRAC_EXO_CHECK(ex_put_variable_param(id, EX_NODAL, static_cast<int>(num_nodal_)), path);
-      SHELLFRAC_EXO_CHECK(exo::put_names(id, EX_NODAL, l.nodal_names, true), path);
+      SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_NODAL, l.nodal_names, true), path);
     }
     if (num_element_vars_ > 0 && !block_ids_.empty()) {
       SHELLFRAC_EXO_CHECK(ex_put_variable_param(id, EX_ELEM_BLOCK, static_cast<int>(num_element_vars_)), path);
-      SHELLFRAC_EXO_CHECK(exo::put_names(id, EX_ELEM_BLOCK, l.element_names, true), path);
+      SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_ELEM_BLOCK, l.element_names, true), path);
       std::vector<int> truth;  // [block][variable]; empty blocks have no values
       for (const auto& elems : block_elements_) truth.insert(truth.end(), num_element_vars_, elems.empty() ? 0 : 1);
       SHELLFRAC_EXO_CHECK(ex_put_truth_table(id, EX_ELEM_BLOCK, static_cast<int>(block_ids_.size()),
@@ -187,7 +187,7 @@ class FileWriter {
   std::size_t num_element_vars() const { return num_element_vars_; }
 
  private:
-  exo::File file_;
+  exodus::File file_;
   std::string path_;
   std::size_t num_elements_ = 0, num_nodes_ = 0, num_nodal_ = 0, num_element_vars_ = 0;
   std::size_t num_file_nodes_ = 0;  ///< num_nodes_, or 1 (the placeholder) when there are no elements
@@ -207,8 +207,8 @@ std::int64_t checked_count(std::int64_t n, const std::string& path, const char* 
 ExodusResults read_file(const std::string& path) {
   std::error_code ec;
   SHELLFRAC_INPUT_REQUIRE(fs::is_regular_file(path, ec), path << ": results file not found");
-  exo::File file = exo::open_read(path);
-  SHELLFRAC_INPUT_REQUIRE(file.is_open(), path << ": cannot open as an Exodus II file (" << exo::last_error() << ")");
+  exodus::File file = exodus::open_read(path);
+  SHELLFRAC_INPUT_REQUIRE(file.is_open(), path << ": cannot open as an Exodus II file (" << exodus::last_error() << ")");
   const int id = file.id();
   const std::string not_ours = ": not a shellfrac DG results file: ";
 
@@ -223,7 +223,7 @@ ExodusResults read_file(const std::string& path) {
   ExodusResults r;
   std::vector<std::int64_t> ids(static_cast<std::size_t>(num_blk));
   SHELLFRAC_EXO_INPUT_CHECK(ex_get_ids(id, EX_ELEM_BLOCK, ids.data()), path << ": cannot read element block ids");
-  const auto names = exo::get_names(id, EX_ELEM_BLOCK, num_blk, path);
+  const auto names = exodus::get_names(id, EX_ELEM_BLOCK, num_blk, path);
   int npe = 0;
   std::vector<std::int64_t> conn, block_count;
   for (std::size_t b = 0; b < ids.size(); ++b) {
@@ -232,8 +232,8 @@ ExodusResults read_file(const std::string& path) {
     blk.type = EX_ELEM_BLOCK;
     SHELLFRAC_EXO_INPUT_CHECK(ex_get_block_param(id, &blk), path << ": cannot read element block " << ids[b]);
     blk.topology[MAX_STR_LENGTH] = '\0';
-    const std::string type = exo::upper(blk.topology);
-    SHELLFRAC_INPUT_REQUIRE(ids[b] > 0 && ids[b] <= exo::max_stored_int,
+    const std::string type = exodus::upper(blk.topology);
+    SHELLFRAC_INPUT_REQUIRE(ids[b] > 0 && ids[b] <= exodus::max_stored_int,
                             path << ": element block id " << ids[b] << " is out of range");
     checked_count(blk.num_entry, path, "block element");
     r.block_ids.push_back(static_cast<int>(ids[b]));
@@ -303,8 +303,8 @@ ExodusResults read_file(const std::string& path) {
   SHELLFRAC_EXO_INPUT_CHECK(ex_get_variable_param(id, EX_ELEM_BLOCK, &ev), path << ": cannot read the element variables");
   checked_count(nv, path, "nodal variable");
   checked_count(ev, path, "element variable");
-  r.nodal_names = exo::get_names(id, EX_NODAL, nv, path, true);
-  r.element_names = exo::get_names(id, EX_ELEM_BLOCK, ev, path, true);
+  r.nodal_names = exodus::get_names(id, EX_NODAL, nv, path, true);
+  r.element_names = exodus::get_names(id, EX_ELEM_BLOCK, ev, path, true);
   std::vector<int> truth(static_cast<std::size_t>(num_blk * ev), 1);
   if (ev > 0)
     SHELLFRAC_EXO_INPUT_CHECK(ex_get_truth_table(id, EX_ELEM_BLOCK, static_cast<int>(num_blk), ev, truth.data()),

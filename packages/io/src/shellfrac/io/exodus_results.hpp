@@ -1,6 +1,6 @@
 #pragma once
 /// \file exodus_results.hpp
-/// DG results in Exodus II (style-anchors §7, docs/output.md).
+/// DG results in Exodus II (docs/output.md).
 ///  * Nodes are DG nodes: every element writes its own copies (3 for P1, 6 for P2), so discontinuities
 ///    and cracks open in ParaView. Global DG node id = element_gid * nodes_per_element + a (written +1 in
 ///    the node id map); element id map = element_gid + 1.

@@ -1,44 +1,44 @@
 #pragma once
 /// \file cohesive_law.hpp
-/// Extrinsic (initially rigid) resultant cohesive law of the shell (math.md §9.1-9.3, §9.5 step 2, §9.7;
-/// Talamini & Radovitzky 2016, "SEED", §3, eqs. 19-31). Header-only and kernel-safe: no Teuchos, no
+/// Extrinsic (initially rigid) resultant cohesive law of the shell (theory.md §9.1-9.3, §9.5 step 2, §9.7;
+/// paper §3, eqs. 19-31). Header-only and kernel-safe: no Teuchos, no
 /// allocation, no exceptions, no output, plain arrays.
 ///
-/// Kinematics at an edge point (SEED eq. 19, math.md §9.1), nu = unit co-normal (caller's choice of nu, see
-/// math.md §9.1; it must be a unit vector), jumps [[u]] = u^- - u^+:
+/// Kinematics at an edge point (paper eq. 19, theory.md §9.1), nu = unit co-normal (caller's choice of nu, see
+/// theory.md §9.1; it must be a unit vector), jumps [[u]] = u^- - u^+:
 ///   delta_N = [[phi]].nu ,  delta_S = (1 - nu(x)nu)[[phi]] ,  theta_N = [[t]].nu ,  theta_S = (1 - nu(x)nu)[[t]]
 ///   delta^2 = delta_N^2 + (alpha1 |delta_S|)^2 + (alpha2 h theta_N)^2 + (alpha3 h |theta_S|)^2      (eq. 20)
-/// Free energy per unit reference length (eq. 24) with the linear strength (SEED §3.1, math.md §9.2):
+/// Free energy per unit reference length (eq. 24) with the linear strength (paper §3.1, theory.md §9.2):
 ///   phi(delta, delta_max) = 1/2 S(delta_max) delta^2 / delta_max ,   S(delta_max) = max(S0 - k delta_max, 0)
 /// Tractions = gradient of phi w.r.t. the jumps at fixed delta_max (Coleman-Noll, eq. 17, giving eqs. 22-23):
 /// with the secant s = S(delta_max)/delta_max = n/delta (eq. 25, n = dphi/d delta = S delta/delta_max),
 ///   d(delta^2/2)/d[[phi]] = delta_N nu + alpha1^2 delta_S ,  d(delta^2/2)/d[[t]] = h^2 (alpha2^2 theta_N nu + alpha3^2 theta_S)
 ///   n_c = s (delta_N nu + alpha1^2 delta_S) ,   m_c = s h^2 (alpha2^2 theta_N nu + alpha3^2 theta_S)
 /// i.e. the h^2 of m_c is exactly the square of the h in the theta terms of eq. 20 (no inconsistency between the
-/// paper's eqs. 20, 22, 23 and math.md §9.3). Resolving (n_c, m_c) with eq. 29/31:
+/// paper's eqs. 20, 22, 23 and theory.md §9.3). Resolving (n_c, m_c) with eq. 29/31:
 ///   n_c.nu = s delta_N ,  |(1-nu(x)nu) n_c|/alpha1 = s alpha1 |delta_S| ,
 ///   m_c.nu/(alpha2 h) = s alpha2 h theta_N ,  |(1-nu(x)nu) m_c|/(alpha3 h) = s alpha3 h |theta_S| ,
 /// so equivalent_traction(n_c, m_c) = s delta = n (eq. 29), = S(delta_max) on a loading state (delta = delta_max):
 /// the nucleation criterion (eqs. 30-31) and the traction law (eqs. 22-23) measure tractions the same way.
 /// Dissipation (eq. 18/26): D_rate = -dphi/d delta_max d delta_max = 1/2 (S - S' delta_max) d delta_max
 /// = 1/2 S0 d delta_max for the linear S, so D = 1/2 S0 min(delta_max, delta_f) and, at complete separation
-/// (delta_max >= delta_f = 2 Gamma/sigma_c), D = 1/2 h sigma_c 2 Gamma/sigma_c = Gamma h (math.md §9.7).
+/// (delta_max >= delta_f = 2 Gamma/sigma_c), D = 1/2 h sigma_c 2 Gamma/sigma_c = Gamma h (theory.md §9.7).
 /// Along any path, int n_c.d[[phi]] + m_c.d[[t]] = phi + D (test_cohesive_law verifies this numerically).
 ///
 /// Bounds: n = s delta <= S(delta_max) <= S0, hence |n_c| <= max(1, alpha1) S0 and |m_c| <= max(alpha2, alpha3) h S0
-/// (the bound "|n_c| <= S0" of math.md §8/§9.3 holds for alpha1 <= 1 only).
+/// (so |n_c| <= S0 holds for alpha1 <= 1 only; theory.md §9.3).
 ///
-/// Compression/contact is not treated (SEED §5, math.md §9.3): delta_N < 0 enters delta through delta_N^2.
+/// Compression/contact is not treated (paper §5, theory.md §9.3): delta_N < 0 enters delta through delta_N^2.
 #include <Kokkos_Macros.hpp>
 #include <cmath>
 #include <limits>
 
 namespace shellfrac::materials {
 
-/// Cohesive parameters of an interface (SEED §3.1, Tables 2-4; math.md §9.2).
+/// Cohesive parameters of an interface (paper §3.1, Tables 2-4; theory.md §9.2).
 ///   S0 = h sigma_c (force per unit length), k = h sigma_c^2 / (2 Gamma) (force per unit area),
 ///   delta_f = S0/k = 2 Gamma / sigma_c (effective opening of complete separation).
-/// Gamma = 0 (SEED §6.3, math.md §9.3): stored as k = +infinity and delta_f = 0. k is then never multiplied
+/// Gamma = 0 (paper §6.3, theory.md §9.3): stored as k = +infinity and delta_f = 0. k is then never multiplied
 /// (cohesive_strength tests delta_max >= delta_f first), so S(delta_max) = 0 for EVERY delta_max >= 0,
 /// including delta_max = 0: the strength drops at once and the edge is separated at activation. S0 keeps
 /// its value h sigma_c, which the nucleation criterion (eq. 30) still uses.
@@ -55,7 +55,7 @@ struct CohesiveParams {
 };
 
 /// Host helper: cohesive parameters from the thickness h, the strength sigma_c, the work of separation Gamma
-/// and the eq. 20 weights alpha1..3 (SEED §3.1: S0 = h sigma_c, k = h sigma_c^2/(2 Gamma), delta_f =
+/// and the eq. 20 weights alpha1..3 (paper §3.1: S0 = h sigma_c, k = h sigma_c^2/(2 Gamma), delta_f =
 /// 2 Gamma/sigma_c; Gamma = 0 stores k = +inf, delta_f = 0, see CohesiveParams). No validation here
 /// (preconditions h > 0, sigma_c > 0, Gamma >= 0, alpha_i > 0; parameter parsing validates).
 inline CohesiveParams make_cohesive_params(double h, double sigma_c, double Gamma, double alpha1 = 1,
@@ -80,7 +80,7 @@ inline CohesiveParams make_cohesive_params(double h, double sigma_c, double Gamm
 
 namespace detail {
 
-/// Normal and tangential parts of a jump (SEED eq. 19): a_N = a.nu, a_S = a - a_N nu (nu a unit vector).
+/// Normal and tangential parts of a jump (paper eq. 19): a_N = a.nu, a_S = a - a_N nu (nu a unit vector).
 /// Returns |a_S|^2, computed from the subtracted vector (accurate also when a is nearly parallel to nu).
 KOKKOS_INLINE_FUNCTION double split_jump(const double a[3], const double nu[3], double& a_N, double a_S[3]) {
   a_N = a[0] * nu[0] + a[1] * nu[1] + a[2] * nu[2];
@@ -92,7 +92,7 @@ KOKKOS_INLINE_FUNCTION double split_jump(const double a[3], const double nu[3], 
   return s2;
 }
 
-/// Components of the jumps (SEED eq. 19) and the squared effective opening delta^2 of eq. 20,
+/// Components of the jumps (paper eq. 19) and the squared effective opening delta^2 of eq. 20,
 ///   delta^2 = delta_N^2 + alpha1^2 |delta_S|^2 + h^2 (alpha2^2 theta_N^2 + alpha3^2 |theta_S|^2).
 /// Shared by effective_opening and cohesive_tractions, so that both give bitwise the same delta.
 KOKKOS_INLINE_FUNCTION double opening_squared(const CohesiveParams& p, const double jphi[3], const double jt[3],
@@ -106,7 +106,7 @@ KOKKOS_INLINE_FUNCTION double opening_squared(const CohesiveParams& p, const dou
 
 }  // namespace detail
 
-/// Strength S(delta_max) = max(S0 - k delta_max, 0) (SEED eq. 24-25 with the linear strength of §3.1, math.md
+/// Strength S(delta_max) = max(S0 - k delta_max, 0) (paper eq. 24-25 with the linear strength of §3.1, theory.md
 /// §9.2). Returns 0 whenever delta_max >= delta_f, without evaluating k delta_max, so that Gamma = 0
 /// (k = +inf, delta_f = 0) gives S = 0 for all delta_max >= 0 (no inf * 0). For Gamma > 0: S(0) = S0,
 /// S(delta_f) = 0, linear in between; the clamp at 0 also absorbs the last-ulp round-off of S0 - k delta_max
@@ -117,7 +117,7 @@ KOKKOS_INLINE_FUNCTION double cohesive_strength(const CohesiveParams& p, double 
   return S > 0.0 ? S : 0.0;
 }
 
-/// Effective opening delta of SEED eq. 20 (math.md §9.1) from the jumps [[phi]], [[t]] (3-vectors,
+/// Effective opening delta of paper eq. 20 (theory.md §9.1) from the jumps [[phi]], [[t]] (3-vectors,
 /// u^- - u^+) and the unit co-normal nu:
 ///   delta = sqrt( delta_N^2 + (alpha1 |delta_S|)^2 + (alpha2 h theta_N)^2 + (alpha3 h |theta_S|)^2 ).
 /// Plain sum of squares: jumps below ~1e-154 underflow to delta = 0 (harmless: no traction).
@@ -127,24 +127,24 @@ KOKKOS_INLINE_FUNCTION double effective_opening(const CohesiveParams& p, const d
   return std::sqrt(detail::opening_squared(p, jphi, jt, nu, dN, dS, tN, tS));
 }
 
-/// Result of one cohesive evaluation at an edge point (math.md §9.7), per unit reference length.
+/// Result of one cohesive evaluation at an edge point (theory.md §9.7), per unit reference length.
 struct CohesiveResult {
   double stored;      ///< phi = 1/2 S(delta_max) delta^2/delta_max (eq. 24); 0 if delta_max = 0 or S = 0
   double dissipated;  ///< D = 1/2 S0 min(delta_max, delta_f) (eq. 26 integrated), total so far; Gamma h once
                       ///< separated, 0 for Gamma = 0
   bool separated;     ///< S(delta_max) = 0, i.e. delta_max >= delta_f (always true for Gamma = 0): the point
-                      ///< carries no traction any more (math.md §9.3: mark the edge FREE)
+                      ///< carries no traction any more (theory.md §9.3: the point is separated)
 };
 
 /// Cohesive tractions n_c (force per unit reference length, conjugate to [[phi]]) and m_c (couple per unit
-/// reference length, conjugate to [[t]]) of SEED eqs. 22-23 / math.md §9.3, with the history variable updated
-/// in place first (math.md §9.2): delta_max = max(delta_max, delta), delta from effective_opening (eq. 20).
+/// reference length, conjugate to [[t]]) of paper eqs. 22-23 / theory.md §9.3, with the history variable updated
+/// in place first (theory.md §9.2): delta_max = max(delta_max, delta), delta from effective_opening (eq. 20).
 /// With the secant s = S(delta_max)/delta_max (eq. 25: n/delta):
 ///   n_c = s (delta_N nu + alpha1^2 delta_S) ,   m_c = s h^2 (alpha2^2 theta_N nu + alpha3^2 theta_S) ,
 /// which are exactly d phi/d[[phi]] and d phi/d[[t]] at fixed delta_max (eq. 17 with phi of eq. 24).
-/// n_c = m_c = 0 if delta_max = 0 (the right-hand-limit convention of SEED §3.1 at activation with zero jump)
+/// n_c = m_c = 0 if delta_max = 0 (the right-hand-limit convention of paper §3.1 at activation with zero jump)
 /// or if S(delta_max) = 0 (separated; Gamma = 0 is separated at once: dissipated = 0, separated = true).
-/// Also returns the stored energy phi and the dissipated energy D (math.md §9.7). nu must be a unit vector.
+/// Also returns the stored energy phi and the dissipated energy D (theory.md §9.7). nu must be a unit vector.
 /// Preconditions: delta_max >= 0 on entry (0 at activation), params from make_cohesive_params.
 KOKKOS_INLINE_FUNCTION CohesiveResult cohesive_tractions(const CohesiveParams& p, const double jphi[3],
                                                          const double jt[3], const double nu[3], double& delta_max,
@@ -153,7 +153,7 @@ KOKKOS_INLINE_FUNCTION CohesiveResult cohesive_tractions(const CohesiveParams& p
   const double delta2 = detail::opening_squared(p, jphi, jt, nu, dN, dS, tN, tS);  // eq. 20 squared
   const double delta = std::sqrt(delta2);  // bitwise = effective_opening(p, jphi, jt, nu)
   const double a1s = p.alpha1 * p.alpha1, a2s = p.alpha2 * p.alpha2, a3s = p.alpha3 * p.alpha3, h2 = p.h * p.h;
-  if (delta > delta_max) delta_max = delta;  // math.md §9.2: update on entry
+  if (delta > delta_max) delta_max = delta;  // theory.md §9.2: update on entry
 
   const double S = cohesive_strength(p, delta_max);
   CohesiveResult r{0.0, 0.0, !(S > 0.0)};
@@ -179,10 +179,10 @@ KOKKOS_INLINE_FUNCTION CohesiveResult cohesive_tractions(const CohesiveParams& p
   return r;
 }
 
-/// Equivalent traction of the nucleation criterion (SEED eqs. 29-31, math.md §9.5 step 2) from the average
+/// Equivalent traction of the nucleation criterion (paper eqs. 29-31, theory.md §9.5 step 2) from the average
 /// edge force n and couple m (per unit reference length) and the unit co-normal nu:
 ///   n_eq = sqrt( (n.nu)^2 + (|(1-nu(x)nu) n|/alpha1)^2 + ((m.nu)/(alpha2 h))^2 + (|(1-nu(x)nu) m|/(alpha3 h))^2 ).
-/// Nucleation when n_eq >= S0 (eq. 30: f = n_eq/S0 - 1 >= 0; math.md averages f over the edge, eq. 51).
+/// Nucleation when n_eq >= S0 (eq. 30: f = n_eq/S0 - 1 >= 0; theory.md §9.5 averages f over the edge, eq. 51).
 /// Applied to the tractions of cohesive_tractions it returns the effective traction n = S(delta_max)
 /// delta/delta_max (eq. 29), i.e. S(delta_max) on a loading state. Pure membrane tension n = sigma h nu gives
 /// n_eq = sigma h (nucleation at sigma = sigma_c).

@@ -1,14 +1,14 @@
 #pragma once
 /// \file elastic_resultant.hpp
-/// Elastic resultant law of the shell (math.md §3.1): St. Venant-Kirchhoff in resultants, Kirchhoff-type
+/// Elastic resultant law of the shell (theory.md §3.1): St. Venant-Kirchhoff in resultants, Kirchhoff-type
 /// (per unit reference area). Header-only and kernel-safe: no Teuchos, no allocation, plain arrays.
 ///   C0 = [[1, nu, 0], [nu, 1, 0], [0, 0, (1-nu)/2]]
 ///   N_v = D_n C0 (eps_v - eps_v^p),  M_v = D_m C0 (rho_v - rho_v^p),  Q = D_s (gam - gam^p)
 ///   W   = 1/2 N_v.(eps_v - eps_v^p) + 1/2 M_v.(rho_v - rho_v^p) + 1/2 Q.(gam - gam^p)
 /// Voigt with engineering shear: eps_v = [eps_11, eps_22, 2 eps_12], rho_v likewise; N_v = [N11, N22, N12],
 /// M_v = [M11, M22, M12]. The plastic strains eps^p, gam^p, rho^p (same conventions) are inputs of the
-/// overloads taking them; gam^p is zero unless the transverse shear is in the yield function (math.md §4.1
-/// option (b), resultant_plasticity.hpp).
+/// overloads taking them; gam^p is zero unless the transverse shear is in the yield function (`Shear Yield`,
+/// theory.md §4.1, resultant_plasticity.hpp).
 #include <Kokkos_Macros.hpp>
 
 namespace shellfrac::materials {
@@ -60,7 +60,7 @@ KOKKOS_INLINE_FUNCTION void elastic_resultants(const ElasticSection& s, const do
   elastic_resultants(s, eps, gam, rho, zero, zero, zero, N, Q, M);
 }
 
-/// Stored energy per unit reference area with plastic strains (math.md §3.1).
+/// Stored energy per unit reference area with plastic strains (theory.md §3.1).
 KOKKOS_INLINE_FUNCTION double elastic_energy(const ElasticSection& s, const double eps[3], const double gam[2],
                                              const double rho[3], const double eps_p[3], const double gam_p[2],
                                              const double rho_p[3]) {

@@ -7,8 +7,9 @@ namespace shellfrac::materials {
 Teuchos::RCP<const Teuchos::ParameterList> MaterialParams::valid_parameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("<material name>"));
   params::set_choice(*pl, "Model", "Elastic",
-                     "Bulk constitutive model: Elastic (resultant law, math.md §3) or Resultant Plasticity (Ilyushin "
-                     "ellipsoid in membrane and bending resultants, linear isotropic hardening, math.md §4)",
+                     "Bulk constitutive model: Elastic (resultant law, docs/theory.md §3) or Resultant Plasticity "
+                     "(Ilyushin ellipsoid in membrane and bending resultants, linear isotropic hardening, "
+                     "docs/theory.md §4)",
                      {"Elastic", "Resultant Plasticity"});
   pl->set("Density", 7800.0, "Mass density rho0 [mass/length^3]", params::positive_double());
   pl->set("Young's Modulus", 200.0e9, "Young's modulus E [force/length^2]", params::positive_double());
@@ -20,7 +21,7 @@ Teuchos::RCP<const Teuchos::ParameterList> MaterialParams::valid_parameters() {
           params::non_negative_double());
   pl->set("Shear Yield", false,
           "Resultant Plasticity: the transverse shear force Q enters the yield function, sigma_eq^2 += 3 |Q|^2 / h^2, "
-          "so that pure shear yields at |Q| = h sigma_y / sqrt(3) (math.md §4.1 option (b)); false = Q stays elastic. "
+          "so that pure shear yields at |Q| = h sigma_y / sqrt(3) (docs/theory.md §4.1); false = Q stays elastic. "
           "Turn it on where shear-off is possible: an elastic Q can reach the cohesive strength of an edge at impact");
   pl->set("Cohesive Strength", 0.0, "sigma_c: strength of the extrinsic cohesive law on the element edges "
                                     "[force/length^2] (paper §3); 0 = this material never breaks",

@@ -9,8 +9,8 @@
 
 namespace shellfrac::materials {
 
-/// Bulk material of a shell block (paper Tables 1-4). The elastic resultant law (math.md §3) uses E, nu;
-/// Model = "Resultant Plasticity" (math.md §4) adds the yield stress Y0, the hardening modulus H and whether the
+/// Bulk material of a shell block (paper Tables 1-4). The elastic resultant law (theory.md §3) uses E, nu;
+/// Model = "Resultant Plasticity" (theory.md §4) adds the yield stress Y0, the hardening modulus H and whether the
 /// transverse shear force enters the yield function.
 struct MaterialParams {
   std::string name;
@@ -20,7 +20,7 @@ struct MaterialParams {
   double poissons_ratio = 0;   ///< nu, in (-1, 0.5)
   double yield_stress = 0;     ///< Y0 [force / length^2] (Resultant Plasticity)
   double hardening_modulus = 0;  ///< H [force / length^2], linear isotropic (Resultant Plasticity)
-  bool shear_in_yield = false;   ///< transverse shear in the yield function (math.md §4.1 option (b))
+  bool shear_in_yield = false;   ///< transverse shear in the yield function (`Shear Yield`, theory.md §4.1)
   double cohesive_strength = 0;  ///< sigma_c [force / length^2]; 0 = edges of this material never break
   double fracture_energy = 0;    ///< Gamma [force / length] (work of separation per unit area), >= 0
   bool plastic() const { return model == "Resultant Plasticity"; }

@@ -1,20 +1,20 @@
 #pragma once
 /// \file resultant_plasticity.hpp
-/// Resultant plasticity point law of the shell (math.md §4): an Ilyushin-Shapiro type yield function in the
+/// Resultant plasticity point law of the shell (theory.md §4): an Ilyushin-Shapiro type yield function in the
 /// stress resultants (smooth uncoupled ellipsoid, Simo-Kennedy 1992 specialised to linear isotropic
-/// hardening), associative flow, and the closest-point return map of math.md §4.3, which reduces to ONE
+/// hardening), associative flow, and the closest-point return map of theory.md §4.3, which reduces to ONE
 /// scalar equation in the spectral basis shared by P and C0. Header-only and kernel-safe: no Teuchos, no
 /// allocation, no exceptions, no output, plain arrays.
 ///
-/// Conventions are those of elastic_resultant.hpp (math.md §3.1): Voigt vectors with engineering shear,
+/// Conventions are those of elastic_resultant.hpp (theory.md §3.1): Voigt vectors with engineering shear,
 /// eps_v = [eps_11, eps_22, 2 eps_12], rho_v = [rho_11, rho_22, 2 rho_12]; N_v = [N11, N22, N12],
 /// M_v = [M11, M22, M12] (tensor components); plastic strains eps^p, rho^p use the strain convention.
 ///
-/// Transverse shear: by default it stays elastic, Q = D_s gam (math.md §4.1 default). With
-/// PlasticSection::a_q > 0 it enters the yield function (math.md §4.1 option (b)):
+/// Transverse shear: by default it stays elastic, Q = D_s gam (theory.md §4.1 default). With
+/// PlasticSection::a_q > 0 it enters the yield function (`Shear Yield`, theory.md §4.1):
 ///   sigma_eq^2 = a_n N^T P N + a_m M^T P M + a_q |Q|^2 ,  a_q = 3 / h^2 ,
 /// so that pure transverse shear yields at |Q| = Q0 = h sigma_y / sqrt(3) (the resultant of a uniform shear stress
-/// at von Mises' limit tau = sigma_y/sqrt(3); FEniQS's q0, math.md references), with the plastic shear strain
+/// at von Mises' limit tau = sigma_y/sqrt(3); FEniQS's q0, theory.md §4.1), with the plastic shear strain
 /// gam^p flowing along dgam a_q Q / sigma_eq. The return map keeps its single scalar equation: Q scales as
 /// Q_tr / (1 + z a_q D_s), a seventh spectral mode (both shear components share one rate).
 ///
@@ -28,20 +28,20 @@
 
 namespace shellfrac::materials {
 
-/// Yield data of a section (math.md §4.1): sigma_y(alpha) = Y0 + H alpha.
+/// Yield data of a section (theory.md §4.1): sigma_y(alpha) = Y0 + H alpha.
 struct PlasticSection {
-  ElasticSection elastic;  ///< D_n, D_m, D_s, nu (math.md §3.1)
+  ElasticSection elastic;  ///< D_n, D_m, D_s, nu (theory.md §3.1)
   double h;                ///< thickness
   double Y0;               ///< initial yield stress (> 0)
   double H;                ///< linear isotropic hardening modulus (>= 0)
-  double a_n;              ///< 3 / (2 h^2), membrane weight of sigma_eq^2 (math.md §4.1)
-  double a_m;              ///< 24 / h^4, bending weight of sigma_eq^2 (math.md §4.1)
-  double a_q;              ///< 3 / h^2 with the transverse shear in the yield function (option (b)), else 0
+  double a_n;              ///< 3 / (2 h^2), membrane weight of sigma_eq^2 (theory.md §4.1)
+  double a_m;              ///< 24 / h^4, bending weight of sigma_eq^2 (theory.md §4.1)
+  double a_q;              ///< 3 / h^2 with the transverse shear in the yield function (`Shear Yield`), else 0
 };
 
 /// Host helper: section data from Young's modulus E, Poisson's ratio nu, thickness h, initial yield stress
-/// Y0 (> 0), hardening modulus H (>= 0), whether the transverse shear is in the yield function (math.md §4.1
-/// option (b)) and shear correction factor kappa (math.md §3.1, §4.1). No validation here
+/// Y0 (> 0), hardening modulus H (>= 0), whether the transverse shear is in the yield function (`Shear Yield`,
+/// theory.md §4.1) and shear correction factor kappa (theory.md §3.1, §4.1). No validation here
 /// (MaterialParams/BlockParams validate).
 inline PlasticSection make_plastic_section(double E, double nu, double h, double Y0, double H,
                                            bool shear_in_yield = false, double kappa = 5.0 / 6.0) {
@@ -56,7 +56,7 @@ inline PlasticSection make_plastic_section(double E, double nu, double h, double
   return s;
 }
 
-/// Internal state at one area quadrature point (math.md §4.2): eps_v^p, rho_v^p (Voigt, engineering shear),
+/// Internal state at one area quadrature point (theory.md §4.2): eps_v^p, rho_v^p (Voigt, engineering shear),
 /// the equivalent plastic strain alpha and the plastic transverse shear strain gam^p (zero unless the shear
 /// is in the yield function). All zero initially.
 struct PlasticState {
@@ -76,7 +76,7 @@ struct ReturnMapResult {
 
 namespace detail {
 
-/// Spectral form of the yield function (math.md §4.3, the Simo-Taylor plane-stress trick).
+/// Spectral form of the yield function (theory.md §4.3, the Simo-Taylor plane-stress trick).
 /// NOTE: P = (1/3)[[2,-1,0],[-1,2,0],[0,0,6]] and C0 = [[1,nu,0],[nu,1,0],[0,0,(1-nu)/2]] share their
 /// eigenvectors (1,1,0)/sqrt2, (1,-1,0)/sqrt2, (0,0,1), with eigenvalues lamP = (1/3, 1, 2) and
 /// lamC = (1+nu, 1-nu, (1-nu)/2). The return map (1 + z a D C0 P) X = X_tr is therefore diagonal in that
@@ -92,14 +92,14 @@ KOKKOS_INLINE_FUNCTION void spectral_weights(double a, const double X[3], double
   w[2] = 2.0 * a * X[2] * X[2];
 }
 
-/// Spectral rates b_k = a D lamC_k lamP_k of math.md §4.3 step 3 (see spectral_weights).
+/// Spectral rates b_k = a D lamC_k lamP_k of theory.md §4.3 step 3 (see spectral_weights).
 KOKKOS_INLINE_FUNCTION void spectral_rates(double a, double D, double nu, double b[3]) {
   b[0] = a * D * (1.0 + nu) / 3.0;
   b[1] = a * D * (1.0 - nu);
   b[2] = b[1];
 }
 
-/// X = (1 + z a D C0 P)^{-1} X_tr evaluated in the spectral basis (math.md §4.3 step 5).
+/// X = (1 + z a D C0 P)^{-1} X_tr evaluated in the spectral basis (theory.md §4.3 step 5).
 KOKKOS_INLINE_FUNCTION void spectral_scale(double z, const double b[3], const double Xtr[3], double X[3]) {
   const double sum = (Xtr[0] + Xtr[1]) / (1.0 + z * b[0]);
   const double dif = (Xtr[0] - Xtr[1]) / (1.0 + z * b[1]);
@@ -121,7 +121,7 @@ KOKKOS_INLINE_FUNCTION void apply_c0_inverse(double D, double nu, const double x
 constexpr int num_modes = 7;
 
 /// F(z) = sqrt(sum_k w_k/(1+z b_k)^2) (= sigma_eq at t_{n+1}) and F'(z) = -(sum_k w_k b_k/(1+z b_k)^3)/F
-/// over the spectral modes (math.md §4.3 steps 3-4).
+/// over the spectral modes (theory.md §4.3 steps 3-4).
 KOKKOS_INLINE_FUNCTION void spectral_F(double z, const double w[num_modes], const double b[num_modes], double& F,
                                        double& dF) {
   double f2 = 0.0, s3 = 0.0;
@@ -135,7 +135,7 @@ KOKKOS_INLINE_FUNCTION void spectral_F(double z, const double w[num_modes], cons
   dF = F > 0.0 ? -s3 / F : 0.0;
 }
 
-/// g(z) = F(z) - (Y0 + H (alpha_n + z F(z)/h)) of math.md §4.3 step 4 (sy_n = Y0 + H alpha_n, H_h = H/h), and
+/// g(z) = F(z) - (Y0 + H (alpha_n + z F(z)/h)) of theory.md §4.3 step 4 (sy_n = Y0 + H alpha_n, H_h = H/h), and
 /// the Newton step for its root taken on the equivalent equation
 ///   psi(z) = -g(z)/F(z) = sy_n/F(z) + (H/h) z - 1 = 0 ,   psi'(z) = -sy_n F'(z)/F(z)^2 + H/h > 0 ,
 /// which is exactly linear in z for a single active spectral mode (F = sqrt(w)/(1 + z b)) and nearly linear
@@ -151,7 +151,7 @@ KOKKOS_INLINE_FUNCTION void return_map_g(double z, const double w[num_modes], co
 
 }  // namespace detail
 
-/// Equivalent stress sigma_eq(N, Q, M) of math.md §4.1:
+/// Equivalent stress sigma_eq(N, Q, M) of theory.md §4.1:
 ///   sigma_eq^2 = a_n N_v^T P N_v + a_m M_v^T P M_v + a_q |Q|^2 ,  (3/2) s^T P s = s11^2 - s11 s22 + s22^2 + 3 s12^2
 /// (a_q = 0 unless the transverse shear is in the yield function). In uniaxial membrane tension
 /// N = [sigma h, 0, 0] it equals |sigma|; for a pure moment M = [M11, 0, 0] it equals 4 |M11| / h^2 (yield at
@@ -173,20 +173,20 @@ KOKKOS_INLINE_FUNCTION double equivalent_stress(const PlasticSection& s, const d
   return equivalent_stress(s, N, Q, M);
 }
 
-/// Closest-point return map of math.md §4.3 (backward Euler, associative flow of §4.2, hardening
+/// Closest-point return map of theory.md §4.3 (backward Euler, associative flow of §4.2, hardening
 /// d alpha = dgam / h, sigma_y = Y0 + H alpha of §4.1).
 ///
 /// Inputs: total strains eps (membrane, Voigt), gam (transverse shear), rho (bending, Voigt) at t_{n+1}, and
 /// the internal state `old` at t_n. Outputs: resultants N, Q, M at t_{n+1}, the new state `next`, and the
 /// result. `next` MAY alias `old` (the old state is copied before anything is written).
 ///
-/// Algorithm (math.md §4.3):
+/// Algorithm (theory.md §4.3):
 ///  1. trial N_tr = D_n C0 (eps - eps^p_n), M_tr = D_m C0 (rho - rho^p_n), Q_tr = D_s (gam - gam^p_n);
 ///  2. elastic if sigma_eq(N_tr, Q_tr, M_tr) <= Y0 + H alpha_n: next = old, resultants = trial, iterations = 0;
 ///  3.-4. otherwise solve g(z) = F(z) - (Y0 + H (alpha_n + z F(z)/h)) = 0 for z = dgam/sigma_eq > 0 in the
 ///     spectral basis (P and C0 share eigenvectors, Simo-Taylor; see detail::spectral_weights): safeguarded
 ///     Newton inside a bracket [lo, hi] (an iterate outside the closed bracket is replaced by the midpoint),
-///     with the RELATIVE stopping tests of math.md, |z_new - z| <= 1e-14 z_new or |g(z)| <= 1e-13 Y0, and at
+///     with the RELATIVE stopping tests of theory.md §4.3, |z_new - z| <= 1e-14 z_new or |g(z)| <= 1e-13 Y0, and at
 ///     most 100 Newton/bisection steps;
 ///  5. N = (1 + z a_n D_n C0 P)^{-1} N_tr, M likewise, Q = Q_tr / (1 + z a_q D_s), dgam = z F(z),
 ///     alpha = alpha_n + dgam/h, eps^p = eps - (D_n C0)^{-1} N, rho^p = rho - (D_m C0)^{-1} M, gam^p = gam - Q/D_s,
@@ -194,7 +194,7 @@ KOKKOS_INLINE_FUNCTION double equivalent_stress(const PlasticSection& s, const d
 ///     (sigma_eq is homogeneous of degree 1). Note: sum dW_p = h (Y0 alpha + H alpha^2/2) + (h H/2) sum d alpha^2,
 ///     i.e. it exceeds the integral of h sigma_y d alpha by a first-order term when H > 0.
 ///
-/// Three deliberate refinements of the math.md §4.3 pseudo-code (same equation, same root, same stopping tests):
+/// Three deliberate refinements of a plain safeguarded Newton loop (theory.md §4.3; same equation, same root):
 ///  * Tight initial bracket instead of lo = 0, hi = 1/max(b) doubled until g(hi) <= 0. With
 ///    g(z) = F(z) (1 - (H/h) z) - sigma_y(alpha_n) and F(0)/(1 + z b_max) <= F(z) <= F(0)/(1 + z b_min)
 ///    (b_min, b_max over the modes with w_k > 0), the roots of the two bounds,
@@ -203,7 +203,7 @@ KOKKOS_INLINE_FUNCTION double equivalent_stress(const PlasticSection& s, const d
 ///    satisfy g(lo) >= 0 >= g(hi) (both are < h/H, where 1 - (H/h) z > 0), and hi/lo <= b_max/b_min
 ///    <= max(4 (1-nu)/(1+nu), 1.6) (b: a_n D_n, a_m D_m = (3/2, 2) E/(h (1-nu^2)) times lamC lamP = ((1+nu)/3,
 ///    1-nu, 1-nu); shear mode b_6 = a_q D_s = (5/4) E/(h (1+nu)) for kappa = 5/6),
-///    whatever the size of the trial state and of H (the literal bracket needs up to 21 doublings for a trial
+///    whatever the size of the trial state and of H (the plain bracket needs up to 21 doublings for a trial
 ///    state 1e6 times the yield stress). If |g| <= 1e-13 Y0 at a bracket end, that end is the answer (one active
 ///    mode: lo = hi = root). Round-off fallbacks: if g(lo) < 0 the bracket becomes [0, lo]; while g(hi) > 0, hi
 ///    is doubled (bounded).
@@ -211,10 +211,11 @@ KOKKOS_INLINE_FUNCTION double equivalent_stress(const PlasticSection& s, const d
 ///    (detail::return_map_g), exactly linear for one active mode and nearly linear otherwise; g itself behaves
 ///    like 1/(1 + z b), so Newton on g from the right of the root leaves the bracket and falls back to bisection.
 ///  * When |g(z)| <= 1e-13 Y0 the current z is kept (or its Newton update, if inside the closed bracket); it is
-///    never replaced by the bracket midpoint. The literal pseudo-code does replace it whenever Newton hits the
-///    root exactly (g(z) = 0 sets hi = z, so z_new = z is "not in (lo, hi)" and z := (lo + hi)/2): this left a
-///    4e-10 relative yield violation in trial 5 of prototype/test_plast.py, and up to 0.2 (pure M12, first
-///    midpoint = root, replaced by half of it) on the trial states of the RobustnessExtremeTrials test.
+///    never replaced by the bracket midpoint. A loop that requires z_new strictly inside (lo, hi) replaces it
+///    whenever Newton hits the root exactly (g(z) = 0 sets hi = z, so z_new = z is "not in (lo, hi)" and
+///    z := (lo + hi)/2): this left a 4e-10 relative yield violation in trial 5 of an earlier Python
+///    implementation (Test 6b of test_resultant_plasticity), and up to 0.2 (pure M12, first midpoint = root,
+///    replaced by half of it) on the trial states of the RobustnessExtremeTrials test.
 ///
 /// Measured (test_resultant_plasticity): 1-7 evaluations of g per plastic return (typically 5: the two bracket
 /// ends + 3 Newton steps), including trial states 1e6 x yield and overshoots of 1e-14; consistency
@@ -226,10 +227,10 @@ KOKKOS_INLINE_FUNCTION ReturnMapResult resultant_return_map(const PlasticSection
                                                             const double gam[2], const double rho[3],
                                                             const PlasticState& old, PlasticState& next, double N[3],
                                                             double Q[2], double M[3]) {
-  constexpr int max_iterations = 100;        // safeguarded Newton/bisection steps (math.md §4.3: "e.g. 100")
+  constexpr int max_iterations = 100;        // safeguarded Newton/bisection steps (theory.md §4.3)
   constexpr int max_bracket_doublings = 64;  // round-off fallback only; never needed in exact arithmetic
-  constexpr double step_tol = 1e-14;         // |z_new - z| <= 1e-14 z_new            (math.md §4.3)
-  constexpr double yield_tol = 1e-13;        // |g(z)| <= 1e-13 Y0                     (math.md §4.3)
+  constexpr double step_tol = 1e-14;         // |z_new - z| <= 1e-14 z_new            (theory.md §4.3)
+  constexpr double yield_tol = 1e-13;        // |g(z)| <= 1e-13 Y0                     (theory.md §4.3)
 
   ReturnMapResult res{0.0, 0, false, true};
   const ElasticSection& el = s.elastic;
@@ -240,7 +241,7 @@ KOKKOS_INLINE_FUNCTION ReturnMapResult resultant_return_map(const PlasticSection
   const double gp_n[2] = {old.gam_p[0], old.gam_p[1]};
   const double alpha_n = old.alpha;
 
-  // 1. Elastic trial state (math.md §4.3 step 1).
+  // 1. Elastic trial state (theory.md §4.3 step 1).
   double Ntr[3], Qtr[2], Mtr[3];
   elastic_resultants(el, eps, gam, rho, ep_n, gp_n, rp_n, Ntr, Qtr, Mtr);
 
@@ -271,7 +272,7 @@ KOKKOS_INLINE_FUNCTION ReturnMapResult resultant_return_map(const PlasticSection
   }
   res.plastic = true;
 
-  // 3.-4. One scalar equation g(z) = 0, z = dgam / sigma_eq_{n+1} (math.md §4.3).
+  // 3.-4. One scalar equation g(z) = 0, z = dgam / sigma_eq_{n+1} (theory.md §4.3).
   const double H_h = s.H / s.h;
 
   double b_min = 0.0, b_max = 0.0;
@@ -297,7 +298,7 @@ KOKKOS_INLINE_FUNCTION ReturnMapResult resultant_return_map(const PlasticSection
     detail::return_map_g(hi, w, b, sy_n, H_h, F, g, step);
     ++res.iterations;
     for (int k = 0; k < max_bracket_doublings && g > 0.0 && std::abs(g) > yield_tol * s.Y0; ++k) {
-      lo = hi;  // round-off fallback (math.md: hi *= 2)
+      lo = hi;  // round-off fallback: hi *= 2 (theory.md §4.3)
       hi *= 2.0;
       ++res.iterations;
       detail::return_map_g(hi, w, b, sy_n, H_h, F, g, step);

@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "shellfrac/core/error.hpp"
-#include "shellfrac/disc/triangle_basis.hpp"
+#include "shellfrac/core/triangle_basis.hpp"
 #include "shellfrac/mesh/edge_incidence.hpp"
 #include "shellfrac/mesh/vec3_ops.hpp"
 
@@ -144,7 +144,7 @@ std::vector<Vec3> reference_vertex_normals(const SerialMesh& mesh) {
   for (GlobalId e = 0; e < mesh.num_elements(); ++e)
     for (int a = 0; a < 3; ++a) {
       double N[6], dN[6][2];
-      disc::shape(order, disc::p2_node_xi[a][0], disc::p2_node_xi[a][1], N, dN);
+      shape(order, p2_node_xi[a][0], p2_node_xi[a][1], N, dN);
       Vec3 g1{0, 0, 0}, g2{0, 0, 0};
       for (int b = 0; b < npe; ++b) {
         g1 = add(g1, scale(dN[b][0], mesh.coords[mesh.node(e, b)]));

@@ -34,7 +34,7 @@ SerialMesh make_cylindrical_panel(double r, double l, double angle, int n_axial,
 SerialMesh make_cylinder(double r, double l, int n_axial, int n_circ, DiagonalPattern pattern = DiagonalPattern::Right,
                          const std::string& block_name = "shell");
 
-/// Outward unit normal of the exact vertex normals averaged over elements (math.md §1.5): for each mesh
+/// Outward unit normal of the exact vertex normals averaged over elements (theory.md §1.5): for each mesh
 /// vertex, the normalized sum over the elements that use it of the element's unit normal at that vertex
 /// (P2 geometry if TRI6). Entries of non-vertex (mid-side) nodes are zero.
 std::vector<Vec3> reference_vertex_normals(const SerialMesh& mesh);

@@ -6,7 +6,7 @@
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
-#include "shellfrac/disc/triangle_basis.hpp"
+#include "shellfrac/core/triangle_basis.hpp"
 #include "shellfrac/mesh/edge_incidence.hpp"
 #include "shellfrac/mesh/vec3_ops.hpp"
 
@@ -283,10 +283,10 @@ void refine_uniform(SerialMesh& mesh) {
       const GlobalId c = uses[first].element, p = c / 4;
       const int k = uses[first].local_edge;
       const int i0 = child_nodes[c % 4][edge_vertex[k][0]], i1 = child_nodes[c % 4][edge_vertex[k][1]];
-      const double xi1 = 0.5 * (disc::p2_node_xi[i0][0] + disc::p2_node_xi[i1][0]);
-      const double xi2 = 0.5 * (disc::p2_node_xi[i0][1] + disc::p2_node_xi[i1][1]);
+      const double xi1 = 0.5 * (p2_node_xi[i0][0] + p2_node_xi[i1][0]);
+      const double xi2 = 0.5 * (p2_node_xi[i0][1] + p2_node_xi[i1][1]);
       double N[6], dN[6][2];
-      disc::p2_shape(xi1, xi2, N, dN);
+      p2_shape(xi1, xi2, N, dN);
       Vec3 x{0, 0, 0};
       for (int a = 0; a < 6; ++a) x = add(x, scale(N[a], mesh.coords[parent_nodes[6 * p + a]]));
       const GlobalId m = mesh.num_nodes();

@@ -1,7 +1,7 @@
 #pragma once
 /// \file serial_mesh.hpp
 /// The conforming input mesh, as read from a file or made by a generator, held whole on every rank before
-/// distribution. Nodes are shared between elements here; the DG duplication of nodes (math.md §1.1) is
+/// distribution. Nodes are shared between elements here; the DG duplication of nodes (theory.md §1.1) is
 /// done when the mesh is distributed (distributed_mesh.hpp). All indices are 0-based.
 #include <mpi.h>
 

@@ -15,12 +15,11 @@
 #include <vector>
 
 #include "shellfrac/core/error.hpp"
-#include "shellfrac/io/exodus_check.hpp"
+#include "shellfrac/exodus/exodus_api.hpp"
 #include "shellfrac/meshio/gmsh_reader.hpp"
 
 namespace shellfrac::meshio {
 
-namespace exo = io::exo;
 
 namespace {
 
@@ -37,7 +36,7 @@ struct BlockInfo {
 /// Nodes per element implied by an Exodus triangle type name, 0 if the type is not a supported triangle,
 /// -1 if the name does not fix it (TRI, TRIANGLE, TRISHELL). Sets `shell`.
 int triangle_type_nodes(const std::string& type, bool& shell) {
-  const std::string t = exo::upper(type);
+  const std::string t = exodus::upper(type);
   shell = t.rfind("TRISHELL", 0) == 0;
   if (t == "TRI3" || t == "TRISHELL3" || t == "TRIANGLE3") return 3;
   if (t == "TRI6" || t == "TRISHELL6" || t == "TRIANGLE6") return 6;
@@ -63,7 +62,7 @@ void check_stored(std::int64_t n, std::uint64_t bytes_each, std::uint64_t file_b
 
 /// Exodus entity id -> SerialMesh id (positive int).
 int checked_id(std::int64_t id, const std::string& path, const char* what) {
-  SHELLFRAC_INPUT_REQUIRE(id > 0 && id <= exo::max_stored_int,
+  SHELLFRAC_INPUT_REQUIRE(id > 0 && id <= exodus::max_stored_int,
                           path << ": " << what << " has id " << id << "; ids must be positive 32-bit integers");
   return static_cast<int>(id);
 }
@@ -361,8 +360,8 @@ mesh::SerialMesh read_exodus_impl(const std::string& path) {
   // Upper bound for counts read from the header (0 = none: netCDF-4 files may be compressed).
   const std::uint64_t stored_bytes = check_netcdf_classic_header(path, file_size) ? file_size : 0;
   check_exodus_structure(path);
-  exo::File file = exo::open_read(path);
-  SHELLFRAC_INPUT_REQUIRE(file.is_open(), path << ": cannot open as an Exodus II file (" << exo::last_error() << ")");
+  exodus::File file = exodus::open_read(path);
+  SHELLFRAC_INPUT_REQUIRE(file.is_open(), path << ": cannot open as an Exodus II file (" << exodus::last_error() << ")");
   const int id = file.id();
 
   ex_init_params p{};
@@ -398,7 +397,7 @@ mesh::SerialMesh read_exodus_impl(const std::string& path) {
 
   // Element blocks, in file order; elements are numbered in that order.
   const auto block_ids = get_ids(id, EX_ELEM_BLOCK, p.num_elem_blk, path, "element block");
-  const auto block_names = exo::get_names(id, EX_ELEM_BLOCK, p.num_elem_blk, path);
+  const auto block_names = exodus::get_names(id, EX_ELEM_BLOCK, p.num_elem_blk, path);
   std::vector<BlockInfo> blocks;
   std::int64_t total = 0;
   std::size_t first_block_with_elements = 0;
@@ -466,7 +465,7 @@ mesh::SerialMesh read_exodus_impl(const std::string& path) {
   // Node sets.
   {
     const auto ids = get_ids(id, EX_NODE_SET, p.num_node_sets, path, "node set");
-    const auto names = exo::get_names(id, EX_NODE_SET, p.num_node_sets, path);
+    const auto names = exodus::get_names(id, EX_NODE_SET, p.num_node_sets, path);
     std::vector<std::int64_t> entries;
     for (std::size_t s = 0; s < ids.size(); ++s) {
       mesh::NodeSet ns;
@@ -482,7 +481,7 @@ mesh::SerialMesh read_exodus_impl(const std::string& path) {
   // Side sets.
   {
     const auto ids = get_ids(id, EX_SIDE_SET, p.num_side_sets, path, "side set");
-    const auto names = exo::get_names(id, EX_SIDE_SET, p.num_side_sets, path);
+    const auto names = exodus::get_names(id, EX_SIDE_SET, p.num_side_sets, path);
     std::vector<std::int64_t> elems, sides;
     for (std::size_t s = 0; s < ids.size(); ++s) {
       mesh::SideSet ss;
@@ -512,7 +511,7 @@ mesh::SerialMesh read_exodus_impl(const std::string& path) {
   // Element sets.
   {
     const auto ids = get_ids(id, EX_ELEM_SET, p.num_elem_sets, path, "element set");
-    const auto names = exo::get_names(id, EX_ELEM_SET, p.num_elem_sets, path);
+    const auto names = exodus::get_names(id, EX_ELEM_SET, p.num_elem_sets, path);
     std::vector<std::int64_t> entries;
     for (std::size_t s = 0; s < ids.size(); ++s) {
       mesh::ElementSet es;
@@ -564,12 +563,12 @@ void write_exodus_mesh(const mesh::SerialMesh& mesh, const std::string& path) {
   SHELLFRAC_REQUIRE(npe == 3 || npe == 6, path << ": nodes_per_element is " << npe);
   SHELLFRAC_REQUIRE(mesh.connectivity.size() == mesh.element_block.size() * static_cast<std::size_t>(npe),
                     path << ": connectivity size does not match the element count");
-  SHELLFRAC_REQUIRE(mesh.num_nodes() < exo::max_stored_int && mesh.num_elements() < exo::max_stored_int,
+  SHELLFRAC_REQUIRE(mesh.num_nodes() < exodus::max_stored_int && mesh.num_elements() < exodus::max_stored_int,
                     path << ": mesh too large for 32-bit Exodus integers");
-  exo::check_name_lengths(names_of(mesh.blocks), "element block", path);
-  exo::check_name_lengths(names_of(mesh.node_sets), "node set", path);
-  exo::check_name_lengths(names_of(mesh.side_sets), "side set", path);
-  exo::check_name_lengths(names_of(mesh.element_sets), "element set", path);
+  exodus::check_name_lengths(names_of(mesh.blocks), "element block", path);
+  exodus::check_name_lengths(names_of(mesh.node_sets), "node set", path);
+  exodus::check_name_lengths(names_of(mesh.side_sets), "side set", path);
+  exodus::check_name_lengths(names_of(mesh.element_sets), "element set", path);
 
   // Exodus numbers elements block by block: file element k is mesh element order[k].
   const std::size_t ne = mesh.element_block.size();
@@ -580,8 +579,8 @@ void write_exodus_mesh(const mesh::SerialMesh& mesh, const std::string& path) {
   std::vector<std::int64_t> file_number(ne);  // 1-based file element number of each mesh element
   for (std::size_t k = 0; k < ne; ++k) file_number[order[k]] = static_cast<std::int64_t>(k) + 1;
 
-  exo::File file = exo::create(path);
-  SHELLFRAC_REQUIRE(file.is_open(), path << ": cannot create the Exodus file: " << exo::last_error());
+  exodus::File file = exodus::create(path);
+  SHELLFRAC_REQUIRE(file.is_open(), path << ": cannot create the Exodus file: " << exodus::last_error());
   const int id = file.id();
 
   ex_init_params p{};
@@ -619,14 +618,14 @@ void write_exodus_mesh(const mesh::SerialMesh& mesh, const std::string& path) {
       SHELLFRAC_EXO_CHECK(ex_put_conn(id, EX_ELEM_BLOCK, mesh.blocks[b].id, conn.data(), nullptr, nullptr),
                           path << ": element block " << mesh.blocks[b].id);
   }
-  SHELLFRAC_EXO_CHECK(exo::put_names(id, EX_ELEM_BLOCK, names_of(mesh.blocks)), path);
+  SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_ELEM_BLOCK, names_of(mesh.blocks)), path);
 
   for (const auto& ns : mesh.node_sets) {
     std::vector<std::int64_t> entries;
     for (GlobalId n : ns.nodes) entries.push_back(n + 1);
     put_set(id, EX_NODE_SET, ns.id, entries, nullptr, path);
   }
-  SHELLFRAC_EXO_CHECK(exo::put_names(id, EX_NODE_SET, names_of(mesh.node_sets)), path);
+  SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_NODE_SET, names_of(mesh.node_sets)), path);
 
   for (const auto& ss : mesh.side_sets) {
     SHELLFRAC_REQUIRE(ss.elements.size() == ss.local_edges.size(), path << ": side set '" << ss.name << "' sizes differ");
@@ -637,7 +636,7 @@ void write_exodus_mesh(const mesh::SerialMesh& mesh, const std::string& path) {
     }
     put_set(id, EX_SIDE_SET, ss.id, elems, &sides, path);
   }
-  SHELLFRAC_EXO_CHECK(exo::put_names(id, EX_SIDE_SET, names_of(mesh.side_sets)), path);
+  SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_SIDE_SET, names_of(mesh.side_sets)), path);
 
   for (const auto& es : mesh.element_sets) {
     std::vector<std::int64_t> entries;
@@ -645,7 +644,7 @@ void write_exodus_mesh(const mesh::SerialMesh& mesh, const std::string& path) {
     std::sort(entries.begin(), entries.end());
     put_set(id, EX_ELEM_SET, es.id, entries, nullptr, path);
   }
-  SHELLFRAC_EXO_CHECK(exo::put_names(id, EX_ELEM_SET, names_of(mesh.element_sets)), path);
+  SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_ELEM_SET, names_of(mesh.element_sets)), path);
 
   SHELLFRAC_EXO_CHECK(file.close(), path);
 }
@@ -653,7 +652,7 @@ void write_exodus_mesh(const mesh::SerialMesh& mesh, const std::string& path) {
 mesh::SerialMesh read_mesh_file(const std::string& path) {
   std::error_code ec;
   SHELLFRAC_INPUT_REQUIRE(std::filesystem::is_regular_file(path, ec), path << ": mesh file not found");
-  std::string ext = exo::upper(std::filesystem::path(path).extension().string());
+  std::string ext = exodus::upper(std::filesystem::path(path).extension().string());
   if (ext == ".MSH") return read_gmsh(path);
   if (ext == ".EXO" || ext == ".E" || ext == ".G" || ext == ".GEN" || ext == ".EX2") return read_exodus_mesh(path);
   SHELLFRAC_INPUT_REQUIRE(false, path << ": unknown mesh file extension '"

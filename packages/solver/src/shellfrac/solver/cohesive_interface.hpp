@@ -1,13 +1,13 @@
 #pragma once
 /// \file cohesive_interface.hpp
-/// The fracture side of an interface element (paper §3, §5; math.md §9): the cohesive forces of an activated
+/// The fracture side of an interface element (paper §3, §5; theory.md §9): the cohesive forces of an activated
 /// interface and the nucleation check of an intact one. Pure functions on plain arrays, usable in Kokkos
 /// kernels; they write only their own outputs.
 ///
 /// Conventions (those of disc::dg_penalty_forces): the interface joins E- ("minus", whose edge points and
 /// reference data DgInterfaceRef holds) and E+ ("plus"); jumps are [[u]] = u^- - u^+; inputs are the edge
 /// nodes of each side in its own edge-local order. The unit co-normal nu is the CURRENT outward co-normal of
-/// E+ (math.md §9.1 CHOICE: objective under large rotations): nu = normalize(dbar x tau-), with tau- the
+/// E+ (theory.md §9.1: objective under large rotations): nu = normalize(dbar x tau-), with tau- the
 /// current edge tangent of E- (its counter-clockwise direction, opposite to E+'s) and dbar the normalized
 /// mean of the two directors. An opening of E- away from E+ is then delta_N = [[phi]] . nu > 0.
 #include <Kokkos_Macros.hpp>
@@ -26,7 +26,7 @@ KOKKOS_INLINE_FUNCTION void edge_shape_p2_derivative(double s, double dn[3]) {
   dn[2] = 4 - 8 * s;
 }
 
-/// Current unit co-normal nu (outward of E+) at edge point g of an interface (math.md §9.1). Returns false
+/// Current unit co-normal nu (outward of E+) at edge point g of an interface (theory.md §9.1). Returns false
 /// if the faces are degenerate (|dbar x tau| < 1e-8); nu is then left unchanged (the caller keeps its last one).
 KOKKOS_INLINE_FUNCTION bool interface_conormal(const disc::DgInterfaceRef& I, int g, const double xm[3][3],
                                                const double tm[2][3], const double tp[2][3], double nu[3]) {
@@ -49,12 +49,12 @@ KOKKOS_INLINE_FUNCTION bool interface_conormal(const disc::DgInterfaceRef& I, in
 
 /// Energies and state of a cohesive interface after one evaluation.
 struct CohesiveInterfaceResult {
-  double stored = 0;      ///< sum_g omega_g phi_g (math.md §9.7)
+  double stored = 0;      ///< sum_g omega_g phi_g (theory.md §9.7)
   double dissipated = 0;  ///< sum_g omega_g D_g
   bool separated = true;  ///< every edge point is fully separated (the interface carries nothing any more)
 };
 
-/// Cohesive forces of an activated interface (math.md §9.4; SEED eqs. 55-56): at each edge point the jumps,
+/// Cohesive forces of an activated interface (theory.md §9.4; paper eqs. 55-56): at each edge point the jumps,
 /// the current co-normal (nu[g] keeps the last good one), the tractions n_c, m_c of the cohesive law with
 /// delta_max[g] updated in place, and the nodal forces
 ///   f^A(-) += omega_g n_c N^A_-,  f^A(+) -= omega_g n_c N^A_+,  g^a(-) += omega_g m_c L^a_-,  g^a(+) -= ...
@@ -87,9 +87,9 @@ KOKKOS_INLINE_FUNCTION CohesiveInterfaceResult cohesive_interface_forces(
   return r;
 }
 
-/// Average edge force and couple of an intact interface at its edge points (math.md §9.5 step 1; SEED eqs. 27-28):
+/// Average edge force and couple of an intact interface at its edge points (theory.md §9.5 step 1; paper eqs. 27-28):
 /// n = (t^+ - t^-)/2 with t^E the traction on element E across its edge from its projected resultants
-/// (disc::dg_element_forces edge_nm output: [g][0..2] force, [3..5] couple, in E's own edge-point order).
+/// (disc::EdgeTractions of edge k of each side: [g][0..2] force, [3..5] couple, in that side's own edge-point order).
 /// The plus side's point matched with the minus side's point g is g' = g if its parameter s_plus[g] equals
 /// edge3_rule.s[g], else 2 - g (a symmetric rule). Returns a cheap upper bound of fbar (below): with
 /// n_eq^2 <= c_n |n|^2 + c_m |m|^2 for any unit nu, c_n = max(1, 1/alpha1^2), c_m = max(1/alpha2^2, 1/alpha3^2)/h^2.
@@ -114,7 +114,7 @@ KOKKOS_INLINE_FUNCTION double interface_edge_tractions(const disc::DgInterfaceRe
   return fbound * I.inv_he;
 }
 
-/// Nucleation check of an intact interface (math.md §9.5; SEED eqs. 29-31, 51) from the average edge force and
+/// Nucleation check of an intact interface (theory.md §9.5; paper eqs. 29-31, 51) from the average edge force and
 /// couple n, m of interface_edge_tractions: the equivalent traction with the current co-normal and the edge
 /// average fbar = (1/h_e) sum_g omega_g (n_eq,g / S0 - 1). nu (out): the co-normal at each point (kept if
 /// degenerate). Returns fbar; the edge activates if fbar >= 0.

@@ -26,7 +26,7 @@ Teuchos::RCP<const Teuchos::ParameterList> TimeParams::valid_parameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("Time Integration"));
   pl->set("End Time", 0.0, "Final time [time]; 0 writes the reference state without time stepping",
           params::non_negative_double());
-  pl->set("Safety Factor", 0.8, "S_f: the time step is S_f times the stable estimate (math.md §8; keep <= 0.9)",
+  pl->set("Safety Factor", 0.8, "S_f: the time step is S_f times the stable estimate (theory.md §8; keep <= 0.9)",
           params::double_range(0.0, 1.0, true, false));
   pl->set("Time Step", 0.0, "Fixed time step [time]; 0 = Safety Factor x stable estimate", params::non_negative_double());
   pl->set("Force Time Step", false, "Run with a fixed Time Step even if it exceeds the stable estimate");
@@ -86,7 +86,7 @@ Teuchos::RCP<const Teuchos::ParameterList> BoundaryCondition::valid_parameters()
                      "Symmetry: no motion along Normal and the director stays in the plane; Prescribed Velocity: "
                      "velocity ramped smoothly to Velocity over Ramp Time, directors clamped; Prescribed Rotation: "
                      "directors rotated about Axis by an angle ramped smoothly to Angle over Ramp Time, positions free "
-                     "(an end moment without drilling DOFs; math.md §10.1-10.2)",
+                     "(an end moment without drilling DOFs; theory.md §10.1-10.2)",
                      {"Clamped", "Simply Supported", "Symmetry", "Prescribed Velocity", "Prescribed Rotation"});
   pl->set("Node Set", "x_min", "Name of a node set of the mesh, or 'all' (every node; with Elements: every node of "
                                "those elements)");
@@ -147,13 +147,6 @@ BoundaryCondition BoundaryCondition::from_parameters(const std::string& name, Te
   return bc;
 }
 
-double BoundaryCondition::rotation_angle(double t) const {
-  return (ramp_time > 0 && t < ramp_time) ? 0.5 * angle * (1 - std::cos(M_PI * t / ramp_time)) : angle;
-}
-double BoundaryCondition::rotation_rate(double t) const {
-  return (ramp_time > 0 && t < ramp_time) ? 0.5 * angle * M_PI / ramp_time * std::sin(M_PI * t / ramp_time) : 0.0;
-}
-
 Teuchos::RCP<const Teuchos::ParameterList> InitialVelocity::valid_parameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("<condition name>"));
   pl->set("Elements", "all", "Element set or block whose nodes get the velocity; 'all' for every element");
@@ -205,7 +198,7 @@ Teuchos::RCP<const Teuchos::ParameterList> Load::valid_parameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("<load name>"));
   params::set_choice(*pl, "Type", "Pressure",
                      "Pressure: follower pressure normal to the current mid-surface (along G1 x G2 of each element; "
-                     "math.md §10.3); Gravity: uniform body acceleration on the lumped masses",
+                     "theory.md §10.3); Gravity: uniform body acceleration on the lumped masses",
                      {"Pressure", "Gravity"});
   pl->set("Elements", "all", "Element set or block carrying the load; 'all' for every element");
   params::set_choice(*pl, "Function", "Constant",

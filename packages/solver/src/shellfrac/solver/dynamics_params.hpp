@@ -1,6 +1,6 @@
 #pragma once
 /// \file dynamics_params.hpp
-/// Deck sublists of the explicit shell dynamics (paper §4; math.md §5-8, §10): discretization constants,
+/// Deck sublists of the explicit shell dynamics (paper §4; theory.md §5-8, §10): discretization constants,
 /// time integration, boundary conditions and initial conditions, as plain structs.
 #include <array>
 #include <string>
@@ -18,7 +18,7 @@ struct DiscretizationParams {
   static DiscretizationParams from_parameters(Teuchos::ParameterList& pl, const params::Context& ctx);
 };
 
-/// "Time Integration": explicit central differences (Newmark gamma = 1/2), math.md §7-8.
+/// "Time Integration": explicit central differences (Newmark gamma = 1/2), theory.md §7-8.
 struct TimeParams {
   double end_time = 0.0;         ///< 0: no time stepping, the run writes the reference state only
   double safety_factor = 0.8;    ///< S_f applied to the element-by-element stable estimate
@@ -32,7 +32,7 @@ struct TimeParams {
   static TimeParams from_parameters(Teuchos::ParameterList& pl, const params::Context& ctx);
 };
 
-/// "Fracture": where edges may break and the weights of the effective opening (paper eq. 20, math.md §9).
+/// "Fracture": where edges may break and the weights of the effective opening (paper eq. 20, theory.md §9).
 /// An interior edge can break when the materials of both sides have a Cohesive Strength > 0 and the edge
 /// is in `edges` ("all", or the name of a side set of the mesh).
 struct FractureParams {
@@ -42,7 +42,7 @@ struct FractureParams {
   static FractureParams from_parameters(Teuchos::ParameterList& pl, const params::Context& ctx);
 };
 
-/// One entry of "Boundary Conditions": a condition on every DG copy of the nodes of a node set (math.md §10.1,
+/// One entry of "Boundary Conditions": a condition on every DG copy of the nodes of a node set (theory.md §10.1,
 /// §10.2).
 struct BoundaryCondition {
   enum class Type { Clamped, SimplySupported, Symmetry, PrescribedVelocity, PrescribedRotation };
@@ -56,16 +56,12 @@ struct BoundaryCondition {
   double ramp_time = 0;    ///< Prescribed Velocity/Rotation: cosine ramp duration t_r (0 = applied at once)
   Vec3 axis{0, 1, 0};      ///< Prescribed Rotation: unit rotation axis
   double angle = 0;        ///< Prescribed Rotation: final angle [rad] reached at the end of the ramp
-  /// Prescribed Rotation: angle theta(t) = angle (1 - cos(pi t/t_r))/2 for t < t_r, angle afterwards, and its
-  /// first two time derivatives.
-  double rotation_angle(double t) const;
-  double rotation_rate(double t) const;
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
   static BoundaryCondition from_parameters(const std::string& name, Teuchos::ParameterList& pl,
                                            const params::Context& ctx);
 };
 
-/// One entry of "Initial Conditions": a velocity on the nodes of an element set or block (math.md §10.2).
+/// One entry of "Initial Conditions": a velocity on the nodes of an element set or block (theory.md §10.2).
 struct InitialVelocity {
   std::string name;
   std::string elements;  ///< element set or block name; "all" for every element
@@ -78,7 +74,7 @@ struct InitialVelocity {
                                          const params::Context& ctx);
 };
 
-/// One entry of "Loads" (math.md §10.3).
+/// One entry of "Loads" (theory.md §10.3).
 struct Load {
   enum class Type { Pressure, Gravity };
   enum class Function { Constant, Exponential, Table };

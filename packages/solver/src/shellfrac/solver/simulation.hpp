@@ -1,68 +1,18 @@
 #pragma once
 /// \file simulation.hpp
 /// A shellfrac run: read and validate the whole deck, build the mesh, partition it, build the distributed
-/// DG model — all before any output file is created, so bad input leaves nothing half-written — then
-/// write the results (Exodus, history).
+/// DG model (model_setup.hpp) — all before any output file is created, so bad input leaves nothing
+/// half-written — then step in time and write the results (run_outputs.hpp) and checkpoints.
 #include <mpi.h>
 
-#include <map>
-#include <memory>
 #include <string>
 #include <vector>
 
-#include "shellfrac/core/parameters.hpp"
-#include "shellfrac/materials/material_params.hpp"
-#include "shellfrac/solver/dynamics_params.hpp"
-#include "shellfrac/solver/mesh_factory.hpp"
-
-namespace shellfrac::dist {
-class DistributedMesh;
-struct PartitionParams;
-}  // namespace shellfrac::dist
+#include "shellfrac/core/types.hpp"
+#include "shellfrac/solver/deck.hpp"
+#include "shellfrac/solver/model_setup.hpp"
 
 namespace shellfrac::solver {
-
-/// Validated "Output" sublist.
-struct OutputParams {
-  std::string base_name;  ///< results are <directory>/<base_name>.exo and <base_name>_history.csv
-  std::string directory;  ///< "" = the current directory
-  std::vector<std::string> probes;  ///< node sets whose mean displacement/velocity go to the history
-
-  static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
-};
-
-/// Validated "Checkpoint" sublist (HDF5 checkpoints and restart; io/checkpoint.hpp).
-struct CheckpointParams {
-  int step_interval = 0;      ///< write every N steps (0 = never by count)
-  double wall_minutes = 0;    ///< write every M minutes of wall time (0 = never by time)
-  std::string file;           ///< path; default <Output Directory>/<Base Name>_checkpoint.h5
-  std::string restart_from;   ///< restart from this checkpoint ("" = start at t = 0)
-  static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
-};
-
-/// The whole validated deck, as plain structs.
-struct Deck {
-  std::string file;  ///< the deck's path
-  MeshParams mesh;
-  std::map<std::string, materials::BlockParams> blocks;
-  std::map<std::string, materials::MaterialParams> materials;
-  std::shared_ptr<dist::PartitionParams> partition;
-  OutputParams output;
-  CheckpointParams checkpoint;
-  DiscretizationParams discretization;
-  TimeParams time;
-  FractureParams fracture;
-  std::vector<BoundaryCondition> boundary_conditions;
-  std::vector<InitialVelocity> initial_velocities;
-  std::vector<Load> loads;
-  Teuchos::RCP<Teuchos::ParameterList> expanded;  ///< the deck with every default filled in
-
-  /// The complete valid parameter tree (user-named sublists shown with one example entry), as printed by
-  /// `shellfrac --print-valid-parameters`; the skeleton is itself a runnable deck.
-  static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
-  /// Reads (rank 0 + broadcast) and validates a deck. InputError on any problem. Collective.
-  static Deck read(const std::string& file, MPI_Comm comm = MPI_COMM_WORLD);
-};
 
 /// Mesh and partition statistics of a run (global values, the same on every rank).
 struct RunSummary {
@@ -77,14 +27,6 @@ struct RunSummary {
 };
 
 /// A run. Construction does all the input work (collective); run() writes the outputs.
-class ShellDynamics;
-struct DynamicsSetup;  // shell_dynamics.hpp
-
-/// What ShellDynamics needs from the deck (sections by mesh block index, discretization, time, conditions),
-/// as Simulation builds it. Every block of `mesh` must have an entry in deck.blocks (Simulation checks this
-/// first). Used by the benchmark to build exactly the model of a run.
-DynamicsSetup make_dynamics_setup(const Deck& deck, const mesh::SerialMesh& mesh);
-
 class Simulation {
  public:
   /// `restart_file` (if not empty) overrides the deck's Checkpoint->Restart From.
@@ -106,11 +48,13 @@ class Simulation {
   std::string checkpoint_path() const;
 
  private:
+  void restart_from_checkpoint();
+  void resolve_probes();
+  void summarize();
+
   MPI_Comm comm_;
   Deck deck_;
-  std::unique_ptr<mesh::SerialMesh> mesh_;
-  std::unique_ptr<dist::DistributedMesh> dmesh_;
-  std::unique_ptr<ShellDynamics> dynamics_;
+  RunModel model_;
   std::vector<std::string> probe_names_;
   std::vector<std::vector<char>> probe_members_;
   RunSummary summary_;

@@ -1,0 +1,236 @@
+#include "shellfrac/solver/central_difference.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "shellfrac/core/error.hpp"
+#include "shellfrac/core/parallel.hpp"
+#include "shellfrac/disc/director.hpp"
+#include "shellfrac/decomposition/distributed_mesh.hpp"
+#include "shellfrac/solver/constraints.hpp"
+#include "shellfrac/solver/force_assembly.hpp"
+#include "shellfrac/solver/fracture.hpp"
+#include "shellfrac/solver/loads.hpp"
+#include "shellfrac/solver/shell_model.hpp"
+
+namespace shellfrac::solver {
+
+CentralDifference::CentralDifference(ShellModel& model, Constraints& constraints, const Loads& loads,
+                                     ForceAssembly& assembly, Fracture& fracture, PhaseTimes& times,
+                                     double mass_damping)
+    : model_(model),
+      constraints_(constraints),
+      loads_(loads),
+      assembly_(assembly),
+      fracture_(fracture),
+      times_(times),
+      alpha_(mass_damping) {
+  director_rate_predicted_.assign(model.owned);
+}
+
+void CentralDifference::start(ShellState& s) {
+  assembly_.exchange_state(s);
+  assembly_.compute_forces(s, fracture_.cohesive_params());
+  commit_plasticity(s);
+  loads_.external_forces(s.time, s.x, s.external_force);
+  accelerations(s, s.time, 0.0, s.director_rate);
+}
+
+void CentralDifference::step(ShellState& s, double dt) {
+  const double t1 = s.time + dt;
+  {
+    ScopedTimer timer(times_.update);
+    remember_step_start(s);
+    predict(s, dt, t1);  // paper eqs. 47-48, Algorithm 1
+    constraints_.apply_rotations(t1, s);
+  }
+  assembly_.exchange_state(s);
+  assembly_.compute_forces(s, fracture_.cohesive_params());
+  ScopedTimer timer(times_.update);
+  commit_plasticity(s);
+  if (fracture_.enabled()) {
+    ScopedTimer nucleation(times_.nucleation);
+    fracture_.nucleate(s.step, t1, s, model_, assembly_);
+  }
+  loads_.external_forces(t1, s.x, s.external_force);
+  accelerations(s, t1, dt, director_rate_predicted_);  // eq. 49, with the damping force alpha m v_pre
+  correct_velocities(s, dt, t1);                       // eq. 50
+  book_work(s);
+  constraints_.apply_rotations(t1, s);
+  constraints_.add_rotation_work(s, model_);
+  s.time = t1;
+  ++s.step;
+  check_finite(s);
+}
+
+void CentralDifference::remember_step_start(const ShellState& s) {
+  x_start_.vector().assign(s.x.vector().begin(), s.x.vector().begin() + std::size_t(model_.owned) * position_values);
+  fext_start_ = s.external_force, reaction_start_ = s.reaction;
+  constraints_.begin_step(s, model_);
+}
+
+// Predictor (docs/theory.md §7.4 steps 1-2): x^{n+1} = x^n + dt v^n + dt^2/2 a^n, v_pre = v^n + dt/2 a^n; held nodes
+// stay at X, prescribed components follow the exact integral of their velocity program, and no increment crosses
+// a symmetry plane. Directors: Delta T = dt T-dot + dt^2/2 T-ddot, then the exponential map.
+void CentralDifference::predict(ShellState& s, double dt, double t1) {
+  const auto& planes = constraints_.position_planes();
+  for (LocalId i = 0; i < model_.owned * position_nodes; ++i) {
+    double* x = s.x.point(i);
+    double* v = s.v.point(i);
+    const double* a = s.a.point(i);
+    const double* X = model_.X.point(i);
+    if (constraints_.held(i)) {
+      for (int c = 0; c < 3; ++c) x[c] = X[c], v[c] = 0;
+      continue;
+    }
+    double dx[3];
+    for (int c = 0; c < 3; ++c) {
+      dx[c] = dt * v[c] + 0.5 * dt * dt * a[c];
+      if (!constraints_.prescribed(i, c)) v[c] += 0.5 * dt * a[c];
+    }
+    planes.remove_normal_components(i, dx);
+    planes.remove_normal_components(i, v);
+    const int bc = constraints_.prescribing(i);
+    const Vec3 u = bc >= 0 ? constraints_.prescribed_displacement(bc, t1) : Vec3{0, 0, 0};
+    for (int c = 0; c < 3; ++c) x[c] = constraints_.prescribed(i, c) ? X[c] + u[c] : x[c] + dx[c];
+  }
+  const auto& director_planes = constraints_.director_planes();
+  for (LocalId j = 0; j < model_.owned * director_nodes; ++j) {
+    double L[3][3], dT[2];
+    load_matrix(s.rotation.point(j), L);
+    const double* Td = s.director_rate.point(j);
+    const double* Tdd = s.director_acceleration.point(j);
+    double* Tp = director_rate_predicted_.point(j);
+    const bool held = constraints_.director_held(j);
+    for (int c = 0; c < 2; ++c) {
+      dT[c] = held ? 0.0 : dt * Td[c] + 0.5 * dt * dt * Tdd[c];  // paper eq. 47
+      Tp[c] = held ? 0.0 : Td[c] + 0.5 * dt * Tdd[c];            // paper eq. 48, gamma = 1/2
+    }
+    director_planes.remove_director_components(j, L, dT);
+    director_planes.remove_director_components(j, L, Tp);
+    double* t = s.t.point(j);
+    disc::update_director(t, L, dT, t, L);  // Algorithm 1
+    store_matrix(L, s.rotation.point(j));
+  }
+}
+
+// Accepts the plastic state of the last element kernel as the state at the new time and adds its plastic work.
+// A return map that hit its iteration limit stops the run on every rank, naming the element.
+void CentralDifference::commit_plasticity(ShellState& s) const {
+  if (!model_.any_plastic) return;
+  GlobalId bad = -1;
+  const auto& failed = assembly_.return_failed();
+  const auto& work = assembly_.plastic_work_increment();
+  for (LocalId le = 0; le < model_.owned; ++le) {
+    if (!model_.is_plastic[le]) continue;
+    if (failed[le] && bad < 0) bad = model_.dm.element_gid(le);
+    *s.plastic_work.at(le) += work[le];
+  }
+  const double worst = parallel::max(bad >= 0 ? double(bad) : -1.0, model_.dm.comm());
+  SHELLFRAC_REQUIRE(worst < 0, "the plastic return map did not converge in element " << GlobalId(worst) + 1
+                                   << " at step " << s.step << ", time " << s.time
+                                   << " (docs/theory.md §4.3; a non-finite or extreme strain?)");
+  s.plastic.swap(assembly_.plastic_trial());
+}
+
+// Accelerations at time t from the current forces (paper eq. 49): a = (f_ext - f - alpha m v)/m on free
+// components, the program's acceleration on prescribed ones, 0 on held nodes, without the components normal to
+// symmetry planes; T-ddot = -(Lambda-bar^T g + alpha I T-dot)/I on free directors. `director_rate` is the rate in
+// the damping force (the predicted one in a step). Also the reactions R = m a - f_ext + f on held and prescribed
+// components, and the damping dissipated over dt.
+void CentralDifference::accelerations(ShellState& s, double t, double dt, const RateRows& director_rate) {
+  const double alpha = alpha_;
+  for (LocalId le = 0; le < model_.owned; ++le) {
+    double diss = 0;
+    for (int A = 0; A < position_nodes; ++A) {
+      const LocalId i = le * position_nodes + A;
+      double* acc = s.a.point(i);
+      const double *v = s.v.point(i), *f = s.internal_force.point(i), *fe = s.external_force.point(i);
+      const double m = *model_.mass.point(i);
+      const bool held = constraints_.held(i);
+      if (held) {
+        acc[0] = acc[1] = acc[2] = 0;
+      } else {
+        const int bc = constraints_.prescribing(i);
+        const Vec3 pa = bc >= 0 ? constraints_.prescribed_acceleration(bc, t) : Vec3{0, 0, 0};
+        for (int c = 0; c < 3; ++c) {
+          if (constraints_.prescribed(i, c)) {
+            acc[c] = pa[c];
+          } else {
+            diss += dt * alpha * m * v[c] * v[c];
+            acc[c] = (fe[c] - f[c] - alpha * m * v[c]) / m;
+          }
+        }
+        constraints_.position_planes().remove_normal_components(i, acc);
+      }
+      double* R = s.reaction.point(i);
+      for (int c = 0; c < 3; ++c) R[c] = (held || constraints_.prescribed(i, c)) ? m * acc[c] - fe[c] + f[c] : 0.0;
+    }
+    for (int b = 0; b < director_nodes; ++b) {
+      const LocalId j = le * director_nodes + b;
+      double L[3][3], fT[2];
+      load_matrix(s.rotation.point(j), L);
+      disc::lambda_bar_transpose_times(L, s.director_force.point(j), fT);  // f_T = Lambda-bar^T g
+      const double I = *model_.inertia.point(j);
+      const double* Tp = director_rate.point(j);
+      for (int c = 0; c < 2; ++c) {
+        diss += dt * alpha * I * Tp[c] * Tp[c];
+        fT[c] += alpha * I * Tp[c];
+      }
+      constraints_.director_planes().remove_director_components(j, L, fT);
+      const bool held = constraints_.director_held(j);
+      for (int c = 0; c < 2; ++c) s.director_acceleration.point(j)[c] = held ? 0.0 : -fT[c] / I;
+    }
+    *s.damping_dissipation.at(le) += diss;
+  }
+}
+
+// Corrector (paper eq. 50, gamma = 1/2): v^{n+1} = v_pre + dt/2 a^{n+1} on free components, the program's velocity on
+// prescribed ones; T-dot^{n+1} = T-dot_pre + dt/2 T-ddot^{n+1}.
+void CentralDifference::correct_velocities(ShellState& s, double dt, double t1) const {
+  for (LocalId i = 0; i < model_.owned * position_nodes; ++i) {
+    if (constraints_.held(i)) continue;
+    double* v = s.v.point(i);
+    const double* acc = s.a.point(i);
+    const int bc = constraints_.prescribing(i);
+    const Vec3 pv = bc >= 0 ? constraints_.prescribed_velocity(bc, t1) : Vec3{0, 0, 0};
+    for (int c = 0; c < 3; ++c) v[c] = constraints_.prescribed(i, c) ? pv[c] : v[c] + 0.5 * dt * acc[c];
+  }
+  for (LocalId j = 0; j < model_.owned * director_nodes; ++j)
+    for (int c = 0; c < 2; ++c)
+      s.director_rate.point(j)[c] = director_rate_predicted_.point(j)[c] + 0.5 * dt * s.director_acceleration.point(j)[c];
+}
+
+// Work of the loads and of the reactions over the step by the trapezoidal rule (docs/theory.md §9.7).
+void CentralDifference::book_work(ShellState& s) const {
+  for (LocalId le = 0; le < model_.owned; ++le) {
+    double wext = 0, wreact = 0;
+    for (int k = 0; k < position_values; ++k) {
+      const std::size_t j = std::size_t(le) * position_values + k;
+      const double dx = s.x.data()[j] - x_start_.data()[j];
+      wext += 0.5 * (fext_start_.data()[j] + s.external_force.data()[j]) * dx;
+      wreact += 0.5 * (reaction_start_.data()[j] + s.reaction.data()[j]) * dx;
+    }
+    *s.external_work.at(le) += wext, *s.reaction_work.at(le) += wreact;
+  }
+}
+
+void CentralDifference::check_finite(const ShellState& s) const {
+  GlobalId bad = -1;
+  for (LocalId le = 0; le < model_.owned && bad < 0; ++le)
+    for (int i = 0; i < position_values; ++i)
+      if (!std::isfinite(s.x.at(le)[i]) || !std::isfinite(s.internal_force.at(le)[i])) {
+        bad = model_.dm.element_gid(le);
+        break;
+      }
+  const double worst = parallel::max(bad >= 0 ? double(bad) : -1.0, model_.dm.comm());
+  if (worst >= 0) {
+    std::ostringstream os;
+    os << "numerical blow-up at step " << s.step << ", time " << s.time
+       << ": non-finite position or force in element " << GlobalId(worst) + 1
+       << " (time step too large or unstable input?)";
+    throw NumericalError(os.str());  // on every rank (the reduction above)
+  }
+}
+
+}  // namespace shellfrac::solver

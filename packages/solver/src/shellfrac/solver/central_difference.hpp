@@ -1,0 +1,50 @@
+#pragma once
+/// \file central_difference.hpp
+/// Explicit central differences in time (paper eqs. 47-50 and Algorithm 1; docs/theory.md §7): Newmark with
+/// gamma = 1/2 for positions and for the material director rates, the exponential-map update of the directors,
+/// and the constraints, loads, plasticity commit and fracture checks of each step, as named phases.
+#include "shellfrac/solver/phase_times.hpp"
+#include "shellfrac/solver/shell_state.hpp"
+
+namespace shellfrac::solver {
+
+class Constraints;
+class ForceAssembly;
+class Fracture;
+class Loads;
+struct ShellModel;
+
+class CentralDifference {
+ public:
+  /// `mass_damping`: alpha of the damping force alpha m v (dynamic relaxation; 0 = none).
+  CentralDifference(ShellModel& model, Constraints& constraints, const Loads& loads, ForceAssembly& assembly,
+                    Fracture& fracture, PhaseTimes& times, double mass_damping);
+
+  /// Start-up (docs/theory.md §7.4): forces, loads, accelerations and reactions of the initial state.
+  /// Collective.
+  void start(ShellState& s);
+  /// One step t_n -> t_n + dt. NumericalError (on every rank) if the state becomes non-finite; Error if a
+  /// plastic return map fails. Collective.
+  void step(ShellState& s, double dt);
+
+ private:
+  void remember_step_start(const ShellState& s);
+  void predict(ShellState& s, double dt, double t1);
+  void commit_plasticity(ShellState& s) const;
+  void accelerations(ShellState& s, double t, double dt, const RateRows& director_rate);
+  void correct_velocities(ShellState& s, double dt, double t1) const;
+  void book_work(ShellState& s) const;
+  void check_finite(const ShellState& s) const;
+
+  ShellModel& model_;
+  Constraints& constraints_;
+  const Loads& loads_;
+  ForceAssembly& assembly_;
+  Fracture& fracture_;
+  PhaseTimes& times_;
+  double alpha_;
+  PositionRows x_start_, fext_start_, reaction_start_;  // positions, loads and reactions at t_n (work accounts)
+  RateRows director_rate_predicted_;  // T-dot + dt/2 T-ddot (eq. 48)
+};
+
+}  // namespace shellfrac::solver

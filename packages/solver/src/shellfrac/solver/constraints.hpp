@@ -1,0 +1,128 @@
+#pragma once
+/// \file constraints.hpp
+/// Boundary conditions on the DG copies of mesh nodes (docs/theory.md §10.1-10.2): which position and director
+/// nodes are held, follow a velocity program, stay on symmetry planes or follow a rotation program; the
+/// projections that the time integrator applies to increments, velocities and accelerations; and the support
+/// reactions of each condition.
+///
+/// Composition on one node (deck order does not matter): a held node (Clamped, Simply Supported) is held
+/// whatever else acts on it; a node that follows a Prescribed Velocity ignores symmetry planes; the directors
+/// of Clamped and Prescribed Velocity nodes are held, and a Prescribed Rotation acts only on directors that
+/// nothing else holds. Each node's reaction belongs to the condition that holds it: the first holding condition
+/// in deck order, or the prescribing one; a symmetry condition reports the force normal to its own plane.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "shellfrac/core/types.hpp"
+#include "shellfrac/solver/dynamics_params.hpp"
+#include "shellfrac/solver/shell_state.hpp"
+
+namespace shellfrac::decomposition {
+class DistributedMesh;
+}
+
+namespace shellfrac::solver {
+
+class MeshSets;
+struct ShellModel;
+
+/// The cosine ramp r(t) = (1 - cos(pi t / t_r)) / 2 for t < t_r, 1 afterwards (1 at once for t_r = 0), with
+/// its integral and its rate (docs/theory.md §10.2); value and rate of amplitude x r(t).
+struct CosineRamp {
+  double duration = 0;
+  double value(double t, double amplitude = 1.0) const;
+  double integral(double t) const;
+  double rate(double t, double amplitude = 1.0) const;
+};
+
+/// A symmetry plane acting on a node: its unit normal and the condition it belongs to.
+struct Plane {
+  Vec3 normal;
+  int condition;
+};
+
+/// Short lists of planes per node, compressed (most nodes have none), in deck order.
+class PlaneLists {
+ public:
+  /// From one list per node.
+  void assign(const std::vector<std::vector<Plane>>& lists);
+  const Plane* begin(LocalId i) const { return planes_.data() + offset_[i]; }
+  const Plane* end(LocalId i) const { return planes_.data() + offset_[i + 1]; }
+  /// w -= (w . n) n for each plane normal n of node i, in order.
+  void remove_normal_components(LocalId i, double w[3]) const;
+  /// The same for the material components w[2] of a director quantity whose rotation is L: each normal is
+  /// expressed as d = Lambda-bar^T n and projected out of w (the director stays in the plane, §10.1).
+  void remove_director_components(LocalId i, const double L[3][3], double w[2]) const;
+  std::size_t bytes() const { return sizeof(int) * offset_.size() + sizeof(Plane) * planes_.size(); }
+
+ private:
+  std::vector<int> offset_{0};
+  std::vector<Plane> planes_;
+};
+
+class Constraints {
+ public:
+  /// Resolves every condition's node set and elements (InputError for unknown names) on the owned DG copies.
+  Constraints(const std::vector<BoundaryCondition>& conditions, const MeshSets& sets,
+              const decomposition::DistributedMesh& dm, const std::string& deck_file);
+
+  // Position node i = le * 6 + A of an owned element.
+  bool held(LocalId i) const { return held_by_[i] >= 0; }
+  /// The Prescribed Velocity condition that drives node i, or -1.
+  int prescribing(LocalId i) const { return prescribing_[i]; }
+  /// Whether component c of node i follows a velocity program.
+  bool prescribed(LocalId i, int c) const {
+    return prescribing_[i] >= 0 && conditions_[prescribing_[i]].components[c];
+  }
+  /// Whether node i moves freely in component c (not held, not prescribed in c).
+  bool free(LocalId i, int c) const { return !held(i) && !prescribed(i, c); }
+  const PlaneLists& position_planes() const { return position_planes_; }
+  // Director node j = le * 3 + b of an owned element.
+  bool director_held(LocalId j) const { return director_held_by_[j] >= 0; }
+  const PlaneLists& director_planes() const { return director_planes_; }
+
+  /// Displacement, velocity and acceleration programs of Prescribed Velocity condition bc at time t.
+  Vec3 prescribed_displacement(int bc, double t) const;
+  Vec3 prescribed_velocity(int bc, double t) const;
+  Vec3 prescribed_acceleration(int bc, double t) const;
+
+  /// Prescribed Rotation: directors, rotations and director rates of the rotated nodes at time t
+  /// (t = R(a, theta(t)) t0, Lambda = R Lambda0, T-dot = Lambda-bar^T (theta-dot a x t)).
+  void apply_rotations(double t, ShellState& s) const;
+  /// Records the reference directors and rotations of the rotated nodes (once, from the initial state).
+  void capture_rotation_reference(const ShellState& s);
+  /// Saves t, g and the rotary kinetic energy of each rotated node before a step (for its reaction work).
+  void begin_step(const ShellState& s, const ShellModel& model);
+  /// Adds to reaction_work the work of the support couples of the rotated nodes over the step just taken:
+  /// their director force work (trapezoidal) and the rotary kinetic energy they supplied.
+  void add_rotation_work(ShellState& s, const ShellModel& model) const;
+
+  /// Per condition in deck order: its reaction force (3), then its support couple sum t x g over the director
+  /// nodes it holds (3), as local contributions with the global DG node ids they belong to (for an ordered sum).
+  struct Contribution {
+    std::vector<GlobalId> ids;
+    std::vector<double> values[3];
+  };
+  void reaction_contributions(const ShellState& s, std::size_t bc, Contribution& force, Contribution& couple) const;
+
+  std::size_t size() const { return conditions_.size(); }
+
+ private:
+  struct RotatedNode {
+    LocalId le;
+    int b, bc;
+    double t0[3], L0[3][3];
+    double t_prev[3], g_prev[3], kinetic_prev;  // the previous step, for the reaction work
+  };
+  const decomposition::DistributedMesh& dm_;
+  std::vector<BoundaryCondition> conditions_;
+  std::vector<CosineRamp> ramps_;            // per condition
+  std::vector<int> held_by_, prescribing_;   // per owned position node: condition index or -1
+  std::vector<int> director_held_by_;        // per owned director node: condition index or -1
+  std::vector<std::uint32_t> acts_on_;       // per owned position node: bit b set if condition b acts on it
+  PlaneLists position_planes_, director_planes_;  // per owned position / director node
+  std::vector<RotatedNode> rotated_;
+};
+
+}  // namespace shellfrac::solver

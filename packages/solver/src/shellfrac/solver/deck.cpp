@@ -1,0 +1,185 @@
+#include "shellfrac/solver/deck.hpp"
+
+#include <sys/stat.h>
+
+#include <sstream>
+
+#include "shellfrac/core/error.hpp"
+#include "shellfrac/decomposition/partitioner.hpp"
+
+namespace shellfrac::solver {
+
+namespace {
+
+std::string directory_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? std::string() : path.substr(0, slash);
+}
+
+std::string stem_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  const auto dot = name.find_last_of('.');
+  return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
+}
+
+/// Calls make(name, sublist, context) for every child of the user-named sublist `list` in deck order; a child
+/// that is a parameter instead of a sublist is an input error (`expect` says what belongs there).
+template <class Make>
+void for_each_named_sublist(Teuchos::ParameterList& deck, const char* list, const char* expect,
+                            const params::Context& ctx, Make&& make) {
+  auto& pl = deck.sublist(list);
+  for (auto it = pl.begin(); it != pl.end(); ++it) {
+    const std::string& name = pl.name(it);
+    SHELLFRAC_INPUT_REQUIRE(pl.entry(it).isList(),
+                            ctx.file << ": '" << list << "->" << name << "' must be a sublist" << expect);
+    make(name, pl.sublist(name), ctx / list / name);
+  }
+}
+
+/// Blocks and Materials must both be present and non-empty.
+void require_sections(Teuchos::ParameterList& pl, const params::Context& ctx) {
+  for (const char* name : {"Blocks", "Materials"})
+    SHELLFRAC_INPUT_REQUIRE(pl.isSublist(name) && pl.sublist(name).numParams() > 0,
+                            ctx.file << ": the deck needs a '" << name << "' sublist with one entry per "
+                                     << (std::string(name) == "Blocks" ? "element block (thickness, material)"
+                                                                       : "material (density, elastic constants)"));
+}
+
+/// Blocks and Materials, and every block's material defined.
+void read_sections(Teuchos::ParameterList& pl, const params::Context& ctx, Deck& d) {
+  for_each_named_sublist(pl, "Blocks", " (Thickness, Material)", ctx, [&](const auto& name, auto& sub, const auto& c) {
+    d.blocks[name] = materials::BlockParams::from_parameters(name, sub, c);
+  });
+  for_each_named_sublist(pl, "Materials", "", ctx, [&](const auto& name, auto& sub, const auto& c) {
+    d.materials[name] = materials::MaterialParams::from_parameters(name, sub, c);
+  });
+  for (const auto& [name, b] : d.blocks) {
+    if (d.materials.count(b.material)) continue;
+    std::ostringstream os;
+    for (const auto& [m, unused] : d.materials) os << " '" << m << "'";
+    throw InputError(ctx.file + ": 'Blocks->" + name + "->Material' is '" + b.material +
+                     "', which is not in Materials; defined materials:" + os.str());
+  }
+}
+
+/// Boundary Conditions, Initial Conditions and Loads, in deck order.
+void read_conditions(Teuchos::ParameterList& pl, const params::Context& ctx, Deck& d) {
+  for_each_named_sublist(pl, "Boundary Conditions", " (Type, Node Set)", ctx,
+                         [&](const auto& name, auto& sub, const auto& c) {
+                           d.boundary_conditions.push_back(BoundaryCondition::from_parameters(name, sub, c));
+                         });
+  for_each_named_sublist(pl, "Initial Conditions", " (Elements, Velocity)", ctx,
+                         [&](const auto& name, auto& sub, const auto& c) {
+                           d.initial_velocities.push_back(InitialVelocity::from_parameters(name, sub, c));
+                         });
+  for_each_named_sublist(pl, "Loads", "", ctx, [&](const auto& name, auto& sub, const auto& c) {
+    d.loads.push_back(Load::from_parameters(name, sub, c));
+  });
+}
+
+/// Output and Checkpoint: result names, the output directory (must exist) and the checkpoint paths.
+void read_output(Teuchos::ParameterList& pl, const params::Context& ctx, Deck& d) {
+  const std::string& file = ctx.file;
+  auto& out = pl.sublist("Output");
+  params::validate(out, *OutputParams::valid_parameters(), ctx / "Output");
+  d.output.base_name = out.get<std::string>("Base Name");
+  if (d.output.base_name.empty()) d.output.base_name = stem_of(file);
+  d.output.directory = out.get<std::string>("Directory");
+  for (const auto& p : out.get<Teuchos::Array<std::string>>("Probes")) d.output.probes.push_back(p);
+  auto& ck = pl.sublist("Checkpoint");
+  params::validate(ck, *CheckpointParams::valid_parameters(), ctx / "Checkpoint");
+  d.checkpoint.step_interval = ck.get<int>("Step Interval");
+  d.checkpoint.wall_minutes = ck.get<double>("Wall Interval");
+  d.checkpoint.file = ck.get<std::string>("File");
+  if (d.checkpoint.file.empty()) d.checkpoint.file = d.output.path("_checkpoint.h5");
+  d.checkpoint.restart_from = ck.get<std::string>("Restart From");
+  if (!d.checkpoint.restart_from.empty() && d.checkpoint.restart_from.front() != '/')
+    d.checkpoint.restart_from =
+        (directory_of(file).empty() ? std::string() : directory_of(file) + "/") + d.checkpoint.restart_from;
+  if (!d.output.directory.empty()) {
+    struct stat st {};
+    SHELLFRAC_INPUT_REQUIRE(stat(d.output.directory.c_str(), &st) == 0 && S_ISDIR(st.st_mode),
+                            file << ": 'Output->Directory' = '" << d.output.directory << "' is not an existing directory");
+  }
+}
+
+}  // namespace
+
+std::string OutputParams::path(const std::string& suffix) const {
+  return (directory.empty() ? std::string() : directory + "/") + base_name + suffix;
+}
+
+Teuchos::RCP<const Teuchos::ParameterList> OutputParams::valid_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Output"));
+  pl->set("Base Name", "", "Base name of the results: <Base Name>.exo (or the per-rank set <Base Name>.exo.<np>.<rank>) "
+                           "and <Base Name>_history.csv; empty = the deck's file name without extension");
+  pl->set("Directory", "", "Directory for the results (must exist); empty = the current directory");
+  pl->set("Probes", Teuchos::Array<std::string>(), "Node sets whose mean displacement and velocity (over all DG "
+                                                     "copies of their nodes) are history columns <set>_displ_x ... "
+                                                     "<set>_vel_z, e.g. {tip, centre}");
+  return pl;
+}
+
+Teuchos::RCP<const Teuchos::ParameterList> CheckpointParams::valid_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Checkpoint"));
+  pl->set("Step Interval", 0, "Write a checkpoint every N steps (0 = not by step count)", params::int_range(0, 1 << 30));
+  pl->set("Wall Interval", 0.0, "Write a checkpoint every M minutes of wall time (0 = not by time)",
+          params::non_negative_double());
+  pl->set("File", "", "Checkpoint file (HDF5); empty = <Output Directory>/<Base Name>_checkpoint.h5. It is replaced "
+                      "atomically; SIGUSR1 writes one, SIGTERM writes one and stops the run (exit code 4)");
+  pl->set("Restart From", "", "Continue from this checkpoint (relative paths: to the deck's directory); empty = "
+                              "start at t = 0; the time step is the deck's. The command-line option restart (shellfrac --restart FILE DECK) overrides it");
+  return pl;
+}
+
+Teuchos::RCP<const Teuchos::ParameterList> Deck::valid_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("shellfrac"));
+  pl->set("Mesh", *MeshParams::valid_parameters(), "The mesh: a file or a built-in generator");
+  auto& blocks = pl->sublist("Blocks", false, "One sublist per element block of the mesh, named as the block");
+  blocks.set("shell", *materials::BlockParams::valid_parameters());
+  auto& mats = pl->sublist("Materials", false, "One sublist per material, named freely; blocks refer to them");
+  mats.set("steel", *materials::MaterialParams::valid_parameters());
+  pl->set("Partitioning", *decomposition::PartitionParams::valid_parameters(), "Domain decomposition of the elements");
+  pl->set("Output", *OutputParams::valid_parameters(), "Results files");
+  pl->set("Checkpoint", *CheckpointParams::valid_parameters(), "Checkpoint files and restart");
+  pl->set("Discretization", *DiscretizationParams::valid_parameters(), "DG stabilization constants");
+  pl->set("Time Integration", *TimeParams::valid_parameters(), "Explicit central differences");
+  pl->set("Fracture", *FractureParams::valid_parameters(), "Extrinsic cohesive fracture on element edges");
+  auto& bcs = pl->sublist("Boundary Conditions", false, "One sublist per condition, named freely");
+  bcs.set("clamped end", *BoundaryCondition::valid_parameters());
+  auto& ics = pl->sublist("Initial Conditions", false, "One sublist per initial velocity, named freely");
+  ics.set("initial velocity", *InitialVelocity::valid_parameters());
+  auto& loads = pl->sublist("Loads", false, "One sublist per load, named freely");
+  loads.set("pressure", *Load::valid_parameters());
+  return pl;
+}
+
+Deck Deck::read(const std::string& file, MPI_Comm comm) { return from_parameters(params::read_deck(file, comm), file); }
+
+Deck Deck::from_parameters(const Teuchos::RCP<Teuchos::ParameterList>& deck, const std::string& file) {
+  Deck d;
+  d.file = file;
+  d.expanded = deck;
+  auto& pl = *d.expanded;
+  const params::Context ctx{file, "shellfrac"};
+  // Top level: only the known sublists; user-named children of Blocks/Materials are validated one by one.
+  Teuchos::ParameterList top("shellfrac");
+  for (const char* name : {"Mesh", "Blocks", "Materials", "Partitioning", "Output", "Checkpoint", "Discretization",
+                           "Time Integration", "Fracture", "Boundary Conditions", "Initial Conditions", "Loads"})
+    top.sublist(name);
+  params::validate(pl, top, ctx);
+  require_sections(pl, ctx);
+  d.mesh = MeshParams::from_parameters(pl.sublist("Mesh"), ctx / "Mesh", directory_of(file));
+  read_sections(pl, ctx, d);
+  d.partition = std::make_shared<decomposition::PartitionParams>(
+      decomposition::PartitionParams::from_parameters(pl.sublist("Partitioning"), ctx / "Partitioning"));
+  d.discretization = DiscretizationParams::from_parameters(pl.sublist("Discretization"), ctx / "Discretization");
+  d.time = TimeParams::from_parameters(pl.sublist("Time Integration"), ctx / "Time Integration");
+  d.fracture = FractureParams::from_parameters(pl.sublist("Fracture"), ctx / "Fracture");
+  read_conditions(pl, ctx, d);
+  read_output(pl, ctx, d);
+  return d;
+}
+
+}  // namespace shellfrac::solver

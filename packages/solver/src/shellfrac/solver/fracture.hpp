@@ -1,0 +1,80 @@
+#pragma once
+/// \file fracture.hpp
+/// The fracture bookkeeping (paper §3, §5.1; docs/theory.md §9): which interfaces may break and their cohesive
+/// laws, the nucleation check after each step and the activation of edges, the crack log, and the fragments
+/// (connected pieces through edges that are not fully separated). The cohesive forces themselves are computed
+/// by the interface kernel (force_assembly.hpp).
+#include <array>
+#include <string>
+#include <vector>
+
+#include "shellfrac/disc/dg_element.hpp"
+#include "shellfrac/materials/cohesive_law.hpp"
+#include "shellfrac/solver/dynamics_params.hpp"
+#include "shellfrac/solver/shell_state.hpp"
+
+namespace shellfrac::decomposition {
+class DistributedMesh;
+}
+
+namespace shellfrac::solver {
+
+class ForceAssembly;
+class MeshSets;
+struct ShellModel;
+
+class Fracture {
+ public:
+  /// An interface may break when it is interior and manifold, both sides' materials have a Cohesive Strength
+  /// > 0, and it is in params.edges ('all' or a side set: InputError if the mesh has none of that name).
+  /// Collective.
+  Fracture(const FractureParams& params, const MeshSets& sets, const ShellModel& model);
+
+  /// Whether any interface of the mesh may break (the same on every rank).
+  bool enabled() const { return enabled_; }
+  /// The cohesive law of each local interface (meaningful where breakable).
+  const std::vector<materials::CohesiveParams>& cohesive_params() const { return cohesive_; }
+
+  /// Nucleation and activation after the forces at t1 of step `step` (docs/theory.md §9.5-9.6). Both ranks that
+  /// hold an interface decide from the same numbers (the ghosts' edge tractions come with the flux exchange),
+  /// so the decision needs no message. An activated interface leaves the lifting of both sides; its penalty
+  /// energy and the change of its neighbours' strain energy are booked as activation loss.
+  void nucleate(long step, double t1, ShellState& s, ShellModel& model, const ForceAssembly& assembly);
+  /// After a restart: the liftings of the activated interfaces switched off, the fragment cache and the crack
+  /// log cleared.
+  void restore(const ShellState& s, ShellModel& model);
+
+  /// Crack log rows of the activations not yet reported, gathered, sorted by step and interface id (the same
+  /// on every rank and any rank count). Collective.
+  std::vector<std::vector<double>> crack_events();
+  static std::vector<std::string> crack_event_columns();
+  /// Number of fragments; recomputes them when the global number of separated interfaces changed. Collective.
+  GlobalId fragments(const ShellState& s) const;
+  /// Fragment of each global element: the smallest element id of its piece (after fragments()).
+  GlobalId fragment_of(GlobalId element) const { return fragment_root_[element]; }
+  /// One row per fragment, in increasing fragment id: {fragment id (smallest element id + 1), elements, mass,
+  /// centre of mass x/y/z, momentum x/y/z}, summed over elements in global-id order (rank-count independent).
+  /// Collective; the rows are the same on every rank.
+  std::vector<std::vector<double>> fragment_table(const ShellState& s, const ShellModel& model) const;
+  /// Damage of owned element le: the largest delta_max / delta_f over its edges' points, 1 if separated.
+  double damage(const ShellState& s, const ShellModel& model, LocalId le) const;
+
+ private:
+  void log_activation(std::size_t i, long step, double t1, double fbar, const double xm[3][3], const double n[3][3],
+                      const double m[3][3], const double nu[3][3]);
+  double element_energy(const ShellState& s, const ShellModel& model, const ForceAssembly& assembly,
+                        LocalId le) const;
+
+  const decomposition::DistributedMesh& dm_;
+  const std::vector<disc::DgInterfaceRef>& interface_refs_;
+  bool enabled_ = false;
+  std::vector<char> breakable_;  // per local interface
+  std::vector<materials::CohesiveParams> cohesive_;
+  std::vector<double> crack_log_;  // activations of owned interfaces not yet reported, one row each
+  std::vector<std::array<GlobalId, 3>> all_interfaces_;  // (gid, minus element, plus element) of every interface
+  mutable GlobalId fragments_at_ = -1;  // the number of separated interfaces the cache belongs to
+  mutable GlobalId fragments_ = 0;
+  mutable std::vector<GlobalId> fragment_root_;
+};
+
+}  // namespace shellfrac::solver

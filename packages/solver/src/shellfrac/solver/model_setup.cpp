@@ -1,0 +1,62 @@
+#include "shellfrac/solver/model_setup.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include "shellfrac/core/error.hpp"
+#include "shellfrac/core/parallel.hpp"
+#include "shellfrac/decomposition/distributed_mesh.hpp"
+#include "shellfrac/decomposition/partitioner.hpp"
+#include "shellfrac/io/exodus_results.hpp"
+#include "shellfrac/mesh/edge_topology.hpp"
+#include "shellfrac/mesh/serial_mesh.hpp"
+#include "shellfrac/solver/deck.hpp"
+#include "shellfrac/solver/shell_dynamics.hpp"
+
+namespace shellfrac::solver {
+
+RunModel::RunModel() = default;
+RunModel::RunModel(RunModel&&) noexcept = default;
+RunModel& RunModel::operator=(RunModel&&) noexcept = default;
+RunModel::~RunModel() = default;
+
+void check_deck_against_mesh(const Deck& deck, const mesh::SerialMesh& m) {
+  for (const auto& b : m.blocks)
+    SHELLFRAC_INPUT_REQUIRE(deck.blocks.count(b.name), deck.file << ": mesh block '" << b.name << "' (from " << m.source
+                                                                 << ") has no entry in the Blocks sublist");
+  for (const auto& section : deck.blocks) {
+    const std::string& name = section.first;
+    const bool found = std::any_of(m.blocks.begin(), m.blocks.end(), [&](const auto& b) { return b.name == name; });
+    std::ostringstream os;
+    for (const auto& b : m.blocks) os << " '" << b.name << "'";
+    SHELLFRAC_INPUT_REQUIRE(found, deck.file << ": 'Blocks->" << name << "' names no block of the mesh (" << m.source
+                                             << "); its blocks are:" << os.str());
+  }
+  // Results are Exodus files, whose names are limited: fail now, not after the run has started writing.
+  for (const auto& b : m.blocks)
+    SHELLFRAC_INPUT_REQUIRE(b.name.size() <= io::max_exodus_name_length,
+                            m.source << ": block name '" << b.name << "' is longer than "
+                                     << io::max_exodus_name_length << " characters (Exodus II limit)");
+}
+
+void check_orientation(const mesh::SerialMesh& m, const mesh::EdgeTopology& topo) {
+  for (const auto& f : topo.interfaces)
+    SHELLFRAC_INPUT_REQUIRE(!f.same_orientation || f.non_manifold,
+                            m.source << ": elements " << f.minus.element + 1 << " and " << f.plus.element + 1
+                                     << " have opposite orientations (normals); orient the surface consistently "
+                                        "(e.g. Gmsh: ReorientMesh / Reverse Surface)");
+}
+
+RunModel build_run_model(const Deck& deck, MPI_Comm comm) {
+  RunModel r;
+  r.mesh = std::make_unique<mesh::SerialMesh>(build_mesh(deck.mesh, comm));
+  check_deck_against_mesh(deck, *r.mesh);
+  r.topology = std::make_unique<mesh::EdgeTopology>(mesh::build_edge_topology(*r.mesh, deck.mesh.non_manifold));
+  check_orientation(*r.mesh, *r.topology);
+  const auto part = decomposition::partition_elements(*r.mesh, *r.topology, parallel::size(comm), *deck.partition, comm);
+  r.distributed = std::make_unique<decomposition::DistributedMesh>(*r.mesh, *r.topology, part, comm);
+  r.dynamics = std::make_unique<ShellDynamics>(*r.mesh, *r.distributed, deck);
+  return r;
+}
+
+}  // namespace shellfrac::solver

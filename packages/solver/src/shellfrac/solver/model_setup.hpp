@@ -1,0 +1,45 @@
+#pragma once
+/// \file model_setup.hpp
+/// From a validated deck to the distributed model of a run, before any output exists: the mesh (read or
+/// generated on rank 0, then broadcast), every check of the deck against the mesh, the edge topology, the
+/// partition, the distributed mesh and the dynamics. The run, the benchmark and the tests build their models
+/// here, so they are the same model.
+#include <mpi.h>
+
+#include <memory>
+
+namespace shellfrac::mesh {
+struct SerialMesh;
+struct EdgeTopology;
+}  // namespace shellfrac::mesh
+namespace shellfrac::decomposition {
+class DistributedMesh;
+}
+
+namespace shellfrac::solver {
+
+struct Deck;
+class ShellDynamics;
+
+struct RunModel {
+  RunModel();
+  RunModel(RunModel&&) noexcept;
+  RunModel& operator=(RunModel&&) noexcept;
+  ~RunModel();
+  std::unique_ptr<mesh::SerialMesh> mesh;
+  std::unique_ptr<mesh::EdgeTopology> topology;
+  std::unique_ptr<decomposition::DistributedMesh> distributed;
+  std::unique_ptr<ShellDynamics> dynamics;
+};
+
+/// Builds the model of `deck` on `comm`. InputError (on every rank) for any problem. Collective.
+RunModel build_run_model(const Deck& deck, MPI_Comm comm);
+
+/// The checks of the deck against the mesh that belong to no single condition: every mesh block has a section
+/// and every section names a block of the mesh; block names fit Exodus. (Set names are checked where they are
+/// resolved, mesh_sets.hpp.)
+void check_deck_against_mesh(const Deck& deck, const mesh::SerialMesh& mesh);
+/// Neighbouring elements must have consistent orientations (normals), except across non-manifold edges.
+void check_orientation(const mesh::SerialMesh& mesh, const mesh::EdgeTopology& topology);
+
+}  // namespace shellfrac::solver

@@ -1,0 +1,177 @@
+#include "shellfrac/solver/run_outputs.hpp"
+
+#include <Teuchos_XMLParameterListCoreHelpers.hpp>
+#include <filesystem>
+#include <regex>
+#include <sstream>
+
+#include "shellfrac/core/parallel.hpp"
+#include "shellfrac/decomposition/distributed_mesh.hpp"
+#include "shellfrac/io/exodus_results.hpp"
+#include "shellfrac/io/history.hpp"
+#include "shellfrac/mesh/serial_mesh.hpp"
+#include "shellfrac/solver/deck.hpp"
+#include "shellfrac/solver/model_setup.hpp"
+#include "shellfrac/solver/shell_dynamics.hpp"
+
+namespace shellfrac::solver {
+
+namespace {
+
+/// The expanded deck as Exodus information records (at most 80 characters each).
+std::vector<std::string> info_records(const Teuchos::ParameterList& deck) {
+  Teuchos::ParameterList pl = deck;
+  params::strip_validators(pl);
+  std::ostringstream os;
+  Teuchos::writeParameterListToXmlOStream(pl, os);
+  std::vector<std::string> lines;
+  std::istringstream is(os.str());
+  for (std::string line; std::getline(is, line);)
+    for (std::size_t i = 0; i < line.size() || i == 0; i += 80) lines.push_back(line.substr(i, 80));
+  return lines;
+}
+
+/// Removes `path` and the files of any per-rank set `path.<n>.<r>`.
+void remove_stale_results(const std::string& path) {
+  namespace fs = std::filesystem;
+  const fs::path p(path);
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  const std::regex set_file(std::regex_replace(p.filename().string(), std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
+                            R"(\.[0-9]+\.[0-9]+)");
+  std::error_code ec;
+  fs::remove(p, ec);
+  for (const auto& entry : fs::directory_iterator(dir, ec))
+    if (std::regex_match(entry.path().filename().string(), set_file)) fs::remove(entry.path(), ec);
+}
+
+/// The Exodus layout of the owned elements: blocks, DG nodes, the nodal vectors and element fields.
+io::ResultsLayout results_layout(const Deck& deck, const RunModel& model) {
+  const auto& dm = *model.distributed;
+  io::ResultsLayout layout;
+  layout.title = "shellfrac: " + deck.file;
+  layout.nodes_per_element = dm.nodes_per_element();
+  for (const auto& b : model.mesh->blocks) layout.block_names.push_back(b.name), layout.block_ids.push_back(b.id);
+  layout.nodal_vectors = {"displ", "velocity", "director"};
+  layout.element_scalars = {"block", "rank"};
+  for (const auto& name : ShellDynamics::element_field_names()) layout.element_scalars.push_back(name);
+  layout.info = info_records(*deck.expanded);
+  for (LocalId le = 0; le < dm.num_owned(); ++le) {
+    layout.element_gids.push_back(dm.element_gid(le));
+    layout.element_block.push_back(dm.element_block(le));
+    for (int a = 0; a < dm.nodes_per_element(); ++a) layout.node_coords.push_back(dm.node_coords(le, a));
+  }
+  return layout;
+}
+
+/// A CSV table: a new file, or (restart) the existing one kept through `keep_through`.
+std::unique_ptr<io::HistoryWriter> csv(const std::string& path, const std::vector<std::string>& columns, bool resume,
+                                       double keep_through, MPI_Comm comm) {
+  return resume ? std::make_unique<io::HistoryWriter>(path, columns, keep_through, comm)
+                : std::make_unique<io::HistoryWriter>(path, columns, comm);
+}
+
+}  // namespace
+
+ResultPaths::ResultPaths(const Deck& deck)
+    : exodus(deck.output.path(".exo")),
+      history(deck.output.path("_history.csv")),
+      fragments(deck.output.path("_fragments.csv")),
+      cracks(deck.output.path("_cracks.csv")),
+      checkpoint(deck.checkpoint.file) {}
+
+std::string ResultPaths::restart_exodus(long step) const {
+  return exodus.substr(0, exodus.size() - 4) + ".restart" + std::to_string(step) + ".exo";
+}
+
+RunOutputs::RunOutputs(const Deck& deck, RunModel& model, const std::vector<std::string>& probe_names,
+                       const std::vector<std::vector<char>>& probe_members, long restart_step, double e0,
+                       MPI_Comm comm)
+    : deck_(deck), model_(model), probe_names_(probe_names), probe_members_(probe_members), e0_(e0) {
+  const ResultPaths paths(deck);
+  const bool restarted = restart_step >= 0;
+  exodus_path_ = restarted ? paths.restart_exodus(restart_step) : paths.exodus;
+  // Results of an earlier run with another rank count would sit beside ours and confuse ParaView (which opens
+  // a per-rank set from any of its files): remove <base>.exo and every <base>.exo.<n>.<r> first.
+  parallel::on_root_then_agree(
+      [&] {
+        remove_stale_results(exodus_path_);
+        if (!restarted) {  // fragment and crack tables of an earlier run would mislead
+          std::filesystem::remove(paths.fragments);
+          std::filesystem::remove(paths.cracks);
+        }
+      },
+      0, comm);
+  const auto& dm = *model.distributed;
+  element_constant_.resize(2);
+  for (LocalId le = 0; le < dm.num_owned(); ++le) {
+    element_constant_[0].push_back(model.mesh->blocks[dm.element_block(le)].id);
+    element_constant_[1].push_back(dm.rank());
+  }
+  exodus_ = std::make_unique<io::ExodusResultsWriter>(exodus_path_, results_layout(deck, model), comm);
+  for (const auto& bc : deck.boundary_conditions) condition_names_.push_back(bc.name);
+  std::vector<std::string> columns;
+  for (const auto& [name, value] : history_row({}, 0, probe_names_, std::vector<double>(6 * probe_names_.size()),
+                                               condition_names_, std::vector<double>(6 * condition_names_.size())))
+    columns.push_back(name);
+  const auto& dyn = *model.dynamics;
+  history_ = csv(paths.history, columns, restarted, double(restart_step), comm);
+  if (!dyn.fracture()) return;
+  const std::vector<std::string> fragment_columns = {"time",  "fragment_id", "elements",   "mass",       "com_x",
+                                                     "com_y", "com_z",       "momentum_x", "momentum_y", "momentum_z"};
+  fragments_ = csv(paths.fragments, fragment_columns, restarted, dyn.time(), comm);
+  cracks_ = csv(paths.cracks, ShellDynamics::crack_event_columns(), restarted, double(restart_step), comm);
+}
+
+RunOutputs::~RunOutputs() = default;
+
+void RunOutputs::write_frame(bool fragment_rows) {
+  auto& dyn = *model_.dynamics;
+  if (fragments_ && fragment_rows)
+    for (auto row : dyn.fragment_table()) {
+      row.insert(row.begin(), dyn.time());
+      fragments_->write_row(row);
+    }
+  std::vector<std::vector<Vec3>> nodal(3);
+  std::vector<std::vector<double>> fields;
+  dyn.nodal_fields(nodal[0], nodal[1], nodal[2]);
+  dyn.element_fields(fields);
+  std::vector<std::vector<double>> element = element_constant_;
+  element.insert(element.end(), fields.begin(), fields.end());
+  exodus_->write_step(dyn.time(), nodal, element);
+}
+
+void RunOutputs::write_history() {
+  auto& dyn = *model_.dynamics;
+  const StepRecord r = dyn.record();
+  const auto probes = dyn.probes(probe_members_);
+  const auto reactions = dyn.reactions();
+  std::vector<double> values;
+  for (const auto& [name, value] : history_row(r, e0_, probe_names_, probes, condition_names_, reactions))
+    values.push_back(value);
+  history_->write_row(values);
+  if (cracks_ && r.cohesive_edges != cracks_logged_) {
+    for (const auto& row : dyn.crack_events()) cracks_->write_row(row);
+    cracks_logged_ = r.cohesive_edges;
+  }
+}
+
+void RunOutputs::flush_crack_log() {
+  if (!cracks_) return;
+  const GlobalId activated = model_.dynamics->record().cohesive_edges;
+  if (activated == cracks_logged_) return;
+  for (const auto& row : model_.dynamics->crack_events()) cracks_->write_row(row);
+  cracks_logged_ = activated;
+}
+
+void RunOutputs::write_checkpoint(const std::string& path) {
+  flush_crack_log();  // complete through the checkpoint's step (a restart keeps those rows)
+  write_checkpoint(path, model_.dynamics->checkpoint());
+}
+
+void RunOutputs::write_checkpoint(const std::string& path, io::CheckpointData state) {
+  state.scalars["e0"] = e0_;
+  state.strings["deck"] = deck_.file;
+  io::write_checkpoint(path, state, model_.distributed->comm());
+}
+
+}  // namespace shellfrac::solver

@@ -1,0 +1,123 @@
+#include "shellfrac/solver/shell_model.hpp"
+
+#include <limits>
+#include <set>
+
+#include "shellfrac/core/error.hpp"
+#include "shellfrac/core/parallel.hpp"
+#include "shellfrac/disc/lumped_mass.hpp"
+#include "shellfrac/disc/stable_time_step.hpp"
+#include "shellfrac/decomposition/distributed_mesh.hpp"
+#include "shellfrac/solver/deck.hpp"
+
+namespace shellfrac::solver {
+
+namespace {
+
+/// Reference positions and directors of overlap element le.
+void reference_nodes(const decomposition::DistributedMesh& dm, LocalId le, double X[6][3], double T[3][3]) {
+  for (int A = 0; A < 6; ++A)
+    for (int c = 0; c < 3; ++c) X[A][c] = dm.node_coords(le, A)[c];
+  for (int a = 0; a < 3; ++a)
+    for (int c = 0; c < 3; ++c) T[a][c] = dm.reference_director(le, a)[c];
+}
+
+/// Whether the neighbour across local edge k of `le` numbers the shared edge's first vertex as its own first
+/// (the matched edge parameter is then s, else 1 - s).
+bool same_edge_direction(const decomposition::DistributedMesh& dm, LocalId le, int k, LocalId nb, int kk) {
+  return dm.mesh_node(le, disc::edge_node(k, 0)) == dm.mesh_node(nb, disc::edge_node(kk, 0));
+}
+
+}  // namespace
+
+std::vector<BlockSection> block_sections(const Deck& deck, const std::vector<std::string>& block_names) {
+  std::vector<BlockSection> out;
+  for (const auto& name : block_names) {
+    const auto& block = deck.blocks.at(name);
+    out.push_back({block.thickness, deck.materials.at(block.material)});
+  }
+  return out;
+}
+
+ShellModel::ShellModel(const decomposition::DistributedMesh& d, const Deck& deck, const std::vector<BlockSection>& s)
+    : dm(d), owned(d.num_owned()), overlap(d.num_overlap()), sections(s) {
+  SHELLFRAC_REQUIRE(dm.nodes_per_element() == 6, "the DG shell needs TRI6 elements");
+  X.assign(overlap);
+  for (LocalId le = 0; le < overlap; ++le)
+    for (int A = 0; A < 6; ++A)
+      for (int c = 0; c < 3; ++c) X.at(le, A)[c] = dm.node_coords(le, A)[c];
+  // Point laws of the owned elements.
+  elastic.resize(owned), plastic.resize(owned), is_plastic.assign(owned, 0);
+  for (LocalId le = 0; le < owned; ++le) {
+    const BlockSection& sc = sections.at(dm.element_block(le));
+    const auto& m = sc.material;
+    elastic[le] = materials::make_elastic_section(m.youngs_modulus, m.poissons_ratio, sc.thickness);
+    if (!m.plastic()) continue;
+    is_plastic[le] = 1, any_plastic = true;
+    plastic[le] = materials::make_plastic_section(m.youngs_modulus, m.poissons_ratio, sc.thickness, m.yield_stress,
+                                                  m.hardening_modulus, m.shear_in_yield);
+  }
+  any_plastic = parallel::any(any_plastic, dm.comm());  // the same on every rank (collectives depend on it)
+  // Non-manifold interfaces are penalized but not lifted (a kink has no single neighbour).
+  std::set<std::pair<LocalId, int>> not_lifted;
+  for (const auto& fc : dm.interfaces())
+    if (fc.non_manifold) not_lifted.insert({fc.minus, fc.minus_edge}), not_lifted.insert({fc.plus, fc.plus_edge});
+  // Element reference data, lifted edges, masses, the stable step.
+  element_refs.resize(owned), lifted.resize(owned), mass.assign(owned), inertia.assign(owned);
+  const double rotary_scale = deck.time.rotary_inertia_scale;
+  stable_dt = std::numeric_limits<double>::max();
+  for (LocalId le = 0; le < owned; ++le) {
+    double Xe[6][3], Te[3][3];
+    reference_nodes(dm, le, Xe, Te);
+    bool same[3];
+    for (int k = 0; k < 3; ++k) {
+      const LocalId nb = dm.neighbor(le, k);
+      lifted[le][k] = nb >= 0 && !not_lifted.count({le, k});
+      same[k] = nb >= 0 && same_edge_direction(dm, le, k, nb, dm.neighbor_edge(le, k));
+    }
+    disc::build_dg_element_ref(Xe, Te, same, element_refs[le]);
+    const BlockSection& sc = sections.at(dm.element_block(le));
+    const auto& m = sc.material;
+    const double h = sc.thickness;
+    disc::hrz_lumped_mass(Xe, m.density * h, mass.at(le));
+    disc::hrz_rotary_inertia(Xe, rotary_scale * m.density * h * h * h / 12, inertia.at(le));
+    disc::StableStepParams sp{m.youngs_modulus, m.poissons_ratio, m.density, h};
+    sp.cx = deck.discretization.cx, sp.cT = deck.discretization.cT, sp.rotary_scale = rotary_scale;
+    stable_dt = std::min(stable_dt, disc::element_stable_dt(sp, disc::characteristic_length(Xe)));
+  }
+  stable_dt = -parallel::max(-stable_dt, dm.comm());  // global minimum (exact, rank-count independent)
+  // Interfaces: reference edge data of the minus side, built with the same routine as the elements' own data;
+  // the penalty constants of paper eq. 42 (sides of different blocks use the mean of their constants, a choice
+  // the paper leaves open).
+  const auto& ifs = dm.interfaces();
+  const auto beta = [&](LocalId le, bool director) {
+    const BlockSection& sc = sections.at(dm.element_block(le));
+    const double E = sc.material.youngs_modulus, h = sc.thickness;
+    return director ? deck.discretization.cT * E * h * h * h / 12 : deck.discretization.cx * E * h;
+  };
+  interface_refs.resize(ifs.size()), interface_beta_x.resize(ifs.size()), interface_beta_t.resize(ifs.size());
+  incident.resize(owned);
+  for (std::size_t i = 0; i < ifs.size(); ++i) {
+    const auto& fc = ifs[i];
+    double Xe[6][3], Te[3][3];
+    reference_nodes(dm, fc.minus, Xe, Te);
+    bool same[3] = {false, false, false};
+    same[fc.minus_edge] = same_edge_direction(dm, fc.minus, fc.minus_edge, fc.plus, fc.plus_edge);
+    disc::DgElementRef r;
+    disc::build_dg_element_ref(Xe, Te, same, r);
+    disc::build_dg_interface_ref(r.edge[fc.minus_edge], interface_refs[i]);
+    interface_beta_x[i] = 0.5 * (beta(fc.minus, false) + beta(fc.plus, false));
+    interface_beta_t[i] = 0.5 * (beta(fc.minus, true) + beta(fc.plus, true));
+    if (fc.minus < owned) incident[fc.minus].push_back({int(i), 0});
+    if (fc.plus < owned) incident[fc.plus].push_back({int(i), 1});
+  }
+}
+
+double ShellModel::bytes() const {
+  return sizeof(disc::DgElementRef) * double(element_refs.size()) +
+         sizeof(double) * double(X.size() + mass.size() + inertia.size()) +
+         sizeof(disc::DgInterfaceRef) * double(interface_refs.size()) +
+         sizeof(materials::PlasticSection) * double(plastic.size());
+}
+
+}  // namespace shellfrac::solver

@@ -1,0 +1,69 @@
+#pragma once
+/// \file shell_model.hpp
+/// The discrete DG shell on one rank, built once from the distributed mesh and the deck: reference geometry
+/// and element data (docs/theory.md §1, §5.3), the point-law parameters of each element, the lumped masses and
+/// rotary inertias (§6), the interface elements with their penalty constants (§5.5) and the stable time step
+/// (§8). Only the lifted-edge flags change afterwards: activation of an edge switches its lifting off (§9.6).
+#include <array>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "shellfrac/disc/dg_element.hpp"
+#include "shellfrac/materials/material_params.hpp"
+#include "shellfrac/materials/elastic_resultant.hpp"
+#include "shellfrac/materials/resultant_plasticity.hpp"
+#include "shellfrac/solver/shell_state.hpp"
+
+namespace shellfrac::decomposition {
+class DistributedMesh;
+}
+
+namespace shellfrac::solver {
+
+struct Deck;
+
+/// The section of a mesh block: its thickness and its material, as the deck gives them.
+struct BlockSection {
+  double thickness = 0;
+  materials::MaterialParams material;
+};
+
+/// The section of every block of the mesh, by block index. Every block has an entry in the deck's Blocks
+/// (checked when the model is set up).
+std::vector<BlockSection> block_sections(const Deck& deck, const std::vector<std::string>& block_names);
+
+/// The discrete DG shell on one rank.
+struct ShellModel {
+  /// Builds every reference quantity; the stable step is the global minimum (collective).
+  ShellModel(const decomposition::DistributedMesh& dm, const Deck& deck, const std::vector<BlockSection>& sections);
+
+  const decomposition::DistributedMesh& dm;
+  LocalId owned = 0, overlap = 0;
+  std::vector<BlockSection> sections;        ///< by block index
+  PositionRows X;                            ///< reference positions (overlap)
+  std::vector<disc::DgElementRef> element_refs;  ///< owned elements
+  std::vector<std::array<bool, 3>> lifted;   ///< owned: the jump over edge k is lifted (an intact manifold edge)
+  std::vector<materials::ElasticSection> elastic;  ///< owned elements
+  std::vector<materials::PlasticSection> plastic;  ///< owned elements (used where is_plastic)
+  std::vector<char> is_plastic;              ///< owned elements of a Resultant Plasticity material
+  bool any_plastic = false;                  ///< some element of the mesh is plastic (the same on every rank)
+  Rows<position_nodes, 1> mass;              ///< HRZ lumped mass per position node (owned)
+  Rows<director_nodes, 1> inertia;           ///< lumped rotary inertia per director node (owned)
+  double stable_dt = 0;                      ///< 2 / max omega over every element (before the safety factor)
+  // Interfaces: every local one (dm.interfaces() order).
+  std::vector<disc::DgInterfaceRef> interface_refs;  ///< the minus side's reference edge data
+  std::vector<double> interface_beta_x, interface_beta_t;  ///< penalty constants (mean of the two sides)
+  /// Per owned element: its interfaces as (local interface, side), side 0 = minus, in increasing interface id.
+  std::vector<std::vector<std::pair<int, int>>> incident;
+
+  /// Rotary kinetic energy 1/2 I |T-dot|^2 of director node b of owned element le.
+  double rotary_kinetic(const ShellState& s, LocalId le, int b) const {
+    const double* T = s.director_rate.at(le, b);
+    return 0.5 * *inertia.at(le, b) * (T[0] * T[0] + T[1] * T[1]);
+  }
+  /// Bytes of reference data held on this rank.
+  double bytes() const;
+};
+
+}  // namespace shellfrac::solver
