@@ -155,13 +155,14 @@ void Constraints::add_rotation_work(ShellState& s, const ShellModel& model) cons
 
 void Constraints::reaction_contributions(const ShellState& s, std::size_t bc, Contribution& force,
                                          Contribution& couple) const {
+  const int b = static_cast<int>(bc);
   force = {}, couple = {};
   for (LocalId le = 0; le < dm_.num_owned(); ++le)
     for (int A = 0; A < 6; ++A) {
       const LocalId i = le * 6 + A;
       if (!(acts_on_[i] & (1u << bc))) continue;
       force.ids.push_back(dm_.dg_node_gid(le, A));
-      const bool holder = held_by_[i] >= 0 || prescribing_[i] >= 0;
+      const bool holder = held_by_[i] == b || prescribing_[i] == b;  // the node's reaction is this condition's
       const double* R = s.reaction.point(i);
       const double* f = s.internal_force.point(i);
       const double* fe = s.external_force.point(i);
@@ -169,6 +170,7 @@ void Constraints::reaction_contributions(const ShellState& s, std::size_t bc, Co
         double r = holder ? R[c] : 0.0;
         // A symmetry plane's reaction is the normal force that keeps the node on the plane.
         for (const Plane* p = position_planes_.begin(i); p != position_planes_.end(i); ++p) {
+          if (p->condition != b) continue;
           const double* n = p->normal.data();
           r += n[c] * ((f[0] - fe[0]) * n[0] + (f[1] - fe[1]) * n[1] + (f[2] - fe[2]) * n[2]);
         }
@@ -179,7 +181,7 @@ void Constraints::reaction_contributions(const ShellState& s, std::size_t bc, Co
   // support; the virtual work g . (dtheta x t) = dtheta . (t x g)).
   for (LocalId le = 0; le < dm_.num_owned(); ++le)
     for (int a = 0; a < 3; ++a) {
-      if (!(acts_on_[le * 6 + a] & (1u << bc)) || director_held_by_[le * 3 + a] < 0) continue;
+      if (director_held_by_[le * 3 + a] != b) continue;
       couple.ids.push_back(dm_.dg_node_gid(le, a));
       double m[3];
       disc::cross3(s.t.at(le, a), s.director_force.at(le, a), m);
