@@ -33,7 +33,7 @@ void CentralDifference::start(ShellState& s) {
   assembly_.compute_forces(s, fracture_.cohesive_params());
   commit_plasticity(s);
   loads_.external_forces(s.time, s.x, s.external_force);
-  accelerations(s, s.time, 0.0, s.director_rate);
+  for (LocalId le = 0; le < model_.owned; ++le) accelerate(s, le, s.time, 0.0, s.director_rate);
 }
 
 void CentralDifference::step(ShellState& s, double dt) {
@@ -53,9 +53,7 @@ void CentralDifference::step(ShellState& s, double dt) {
     fracture_.nucleate(s.step, t1, s, model_, assembly_);
   }
   loads_.external_forces(t1, s.x, s.external_force);
-  accelerations(s, t1, dt, director_rate_predicted_);  // eq. 49, with the damping force alpha m v_pre
-  correct_velocities(s, dt, t1);                       // eq. 50
-  book_work(s);
+  correct(s, dt, t1);
   constraints_.apply_rotations(t1, s);
   constraints_.add_rotation_work(s, model_);
   s.time = t1;
@@ -73,26 +71,34 @@ void CentralDifference::remember_step_start(const ShellState& s) {
 // stay at X, prescribed components follow the exact integral of their velocity program, and no increment crosses
 // a symmetry plane. Directors: Delta T = dt T-dot + dt^2/2 T-ddot, then the exponential map.
 void CentralDifference::predict(ShellState& s, double dt, double t1) {
-  const auto& planes = constraints_.position_planes();
+  using Motion = Constraints::Motion;
   for (LocalId i = 0; i < model_.owned * position_nodes; ++i) {
     double* x = s.x.point(i);
     double* v = s.v.point(i);
     const double* a = s.a.point(i);
     const double* X = model_.X.point(i);
-    if (constraints_.held(i)) {
+    const Motion motion = constraints_.motion(i);
+    if (motion == Motion::held) {
       for (int c = 0; c < 3; ++c) x[c] = X[c], v[c] = 0;
       continue;
     }
     double dx[3];
-    for (int c = 0; c < 3; ++c) {
-      dx[c] = dt * v[c] + 0.5 * dt * dt * a[c];
-      if (!constraints_.prescribed(i, c)) v[c] += 0.5 * dt * a[c];
+    for (int c = 0; c < 3; ++c) dx[c] = dt * v[c] + 0.5 * dt * dt * a[c];
+    if (motion == Motion::prescribed) {  // the exact integral of the program: no drift
+      const Vec3 u = constraints_.prescribed_displacement(constraints_.prescribing(i), t1);
+      for (int c = 0; c < 3; ++c) {
+        const bool p = constraints_.prescribed(i, c);
+        x[c] = p ? X[c] + u[c] : x[c] + dx[c];
+        if (!p) v[c] += 0.5 * dt * a[c];
+      }
+      continue;
     }
-    planes.remove_normal_components(i, dx);
-    planes.remove_normal_components(i, v);
-    const int bc = constraints_.prescribing(i);
-    const Vec3 u = bc >= 0 ? constraints_.prescribed_displacement(bc, t1) : Vec3{0, 0, 0};
-    for (int c = 0; c < 3; ++c) x[c] = constraints_.prescribed(i, c) ? X[c] + u[c] : x[c] + dx[c];
+    for (int c = 0; c < 3; ++c) v[c] += 0.5 * dt * a[c];
+    if (motion == Motion::on_planes) {
+      constraints_.position_planes().remove_normal_components(i, dx);
+      constraints_.position_planes().remove_normal_components(i, v);
+    }
+    for (int c = 0; c < 3; ++c) x[c] += dx[c];
   }
   const auto& director_planes = constraints_.director_planes();
   for (LocalId j = 0; j < model_.owned * director_nodes; ++j) {
@@ -133,86 +139,105 @@ void CentralDifference::commit_plasticity(ShellState& s) const {
   s.plastic.swap(assembly_.plastic_trial());
 }
 
-// Accelerations at time t from the current forces (paper eq. 49): a = (f_ext - f - alpha m v)/m on free
-// components, the program's acceleration on prescribed ones, 0 on held nodes, without the components normal to
-// symmetry planes; T-ddot = -(Lambda-bar^T g + alpha I T-dot)/I on free directors. `director_rate` is the rate in
-// the damping force (the predicted one in a step). Also the reactions R = m a - f_ext + f on held and prescribed
-// components, and the damping dissipated over dt.
-void CentralDifference::accelerations(ShellState& s, double t, double dt, const RateRows& director_rate) {
-  const double alpha = alpha_;
+// The corrector, element by element (one pass over the element's rows): accelerations and reactions at t1,
+// velocities at t1, and the work of the step.
+void CentralDifference::correct(ShellState& s, double dt, double t1) {
   for (LocalId le = 0; le < model_.owned; ++le) {
-    double diss = 0;
-    for (int A = 0; A < position_nodes; ++A) {
-      const LocalId i = le * position_nodes + A;
-      double* acc = s.a.point(i);
-      const double *v = s.v.point(i), *f = s.internal_force.point(i), *fe = s.external_force.point(i);
-      const double m = *model_.mass.point(i);
-      const bool held = constraints_.held(i);
-      if (held) {
-        acc[0] = acc[1] = acc[2] = 0;
-      } else {
-        const int bc = constraints_.prescribing(i);
-        const Vec3 pa = bc >= 0 ? constraints_.prescribed_acceleration(bc, t) : Vec3{0, 0, 0};
-        for (int c = 0; c < 3; ++c) {
-          if (constraints_.prescribed(i, c)) {
-            acc[c] = pa[c];
-          } else {
-            diss += dt * alpha * m * v[c] * v[c];
-            acc[c] = (fe[c] - f[c] - alpha * m * v[c]) / m;
-          }
-        }
-        constraints_.position_planes().remove_normal_components(i, acc);
-      }
-      double* R = s.reaction.point(i);
-      for (int c = 0; c < 3; ++c) R[c] = (held || constraints_.prescribed(i, c)) ? m * acc[c] - fe[c] + f[c] : 0.0;
-    }
-    for (int b = 0; b < director_nodes; ++b) {
-      const LocalId j = le * director_nodes + b;
-      double L[3][3], fT[2];
-      load_matrix(s.rotation.point(j), L);
-      disc::lambda_bar_transpose_times(L, s.director_force.point(j), fT);  // f_T = Lambda-bar^T g
-      const double I = *model_.inertia.point(j);
-      const double* Tp = director_rate.point(j);
-      for (int c = 0; c < 2; ++c) {
-        diss += dt * alpha * I * Tp[c] * Tp[c];
-        fT[c] += alpha * I * Tp[c];
-      }
-      constraints_.director_planes().remove_director_components(j, L, fT);
-      const bool held = constraints_.director_held(j);
-      for (int c = 0; c < 2; ++c) s.director_acceleration.point(j)[c] = held ? 0.0 : -fT[c] / I;
-    }
-    *s.damping_dissipation.at(le) += diss;
+    accelerate(s, le, t1, dt, director_rate_predicted_);  // paper eq. 49, with the damping force alpha m v_pre
+    correct_velocities(s, le, dt, t1);                     // paper eq. 50
+    book_work(s, le);
   }
 }
 
-// Corrector (paper eq. 50, gamma = 1/2): v^{n+1} = v_pre + dt/2 a^{n+1} on free components, the program's velocity on
-// prescribed ones; T-dot^{n+1} = T-dot_pre + dt/2 T-ddot^{n+1}.
-void CentralDifference::correct_velocities(ShellState& s, double dt, double t1) const {
-  for (LocalId i = 0; i < model_.owned * position_nodes; ++i) {
-    if (constraints_.held(i)) continue;
+// Accelerations of owned element le at time t from the current forces (paper eq. 49): a = (f_ext - f - alpha m v)/m
+// on free components, the program's acceleration on prescribed ones, 0 on held nodes, without the components
+// normal to symmetry planes; T-ddot = -(Lambda-bar^T g + alpha I T-dot)/I on free directors. `director_rate` is
+// the rate in the damping force (the predicted one in a step). Also the reactions R = m a - f_ext + f on held and
+// prescribed components, and the damping dissipated over dt.
+void CentralDifference::accelerate(ShellState& s, LocalId le, double t, double dt, const RateRows& director_rate) {
+  using Motion = Constraints::Motion;
+  const double alpha = alpha_;
+  double diss = 0;
+  for (int A = 0; A < position_nodes; ++A) {
+    const LocalId i = le * position_nodes + A;
+    double* acc = s.a.point(i);
+    double* R = s.reaction.point(i);
+    const double *v = s.v.point(i), *f = s.internal_force.point(i), *fe = s.external_force.point(i);
+    const double m = *model_.mass.point(i);
+    const Motion motion = constraints_.motion(i);
+    if (motion == Motion::held) {
+      for (int c = 0; c < 3; ++c) acc[c] = 0, R[c] = m * acc[c] - fe[c] + f[c];
+      continue;
+    }
+    if (motion == Motion::prescribed) {
+      const Vec3 pa = constraints_.prescribed_acceleration(constraints_.prescribing(i), t);
+      for (int c = 0; c < 3; ++c) {
+        if (constraints_.prescribed(i, c)) {
+          acc[c] = pa[c], R[c] = m * acc[c] - fe[c] + f[c];
+        } else {
+          diss += dt * alpha * m * v[c] * v[c];
+          acc[c] = (fe[c] - f[c] - alpha * m * v[c]) / m, R[c] = 0.0;
+        }
+      }
+      continue;
+    }
+    for (int c = 0; c < 3; ++c) {
+      diss += dt * alpha * m * v[c] * v[c];
+      acc[c] = (fe[c] - f[c] - alpha * m * v[c]) / m, R[c] = 0.0;
+    }
+    if (motion == Motion::on_planes) constraints_.position_planes().remove_normal_components(i, acc);
+  }
+  for (int b = 0; b < director_nodes; ++b) {
+    const LocalId j = le * director_nodes + b;
+    double L[3][3], fT[2];
+    load_matrix(s.rotation.point(j), L);
+    disc::lambda_bar_transpose_times(L, s.director_force.point(j), fT);  // f_T = Lambda-bar^T g
+    const double I = *model_.inertia.point(j);
+    const double* Tp = director_rate.point(j);
+    for (int c = 0; c < 2; ++c) {
+      diss += dt * alpha * I * Tp[c] * Tp[c];
+      fT[c] += alpha * I * Tp[c];
+    }
+    constraints_.director_planes().remove_director_components(j, L, fT);
+    const bool held = constraints_.director_held(j);
+    for (int c = 0; c < 2; ++c) s.director_acceleration.point(j)[c] = held ? 0.0 : -fT[c] / I;
+  }
+  *s.damping_dissipation.at(le) += diss;
+}
+
+// Velocities of owned element le at t1 (paper eq. 50, gamma = 1/2): v^{n+1} = v_pre + dt/2 a^{n+1} on free
+// components, the program's velocity on prescribed ones; T-dot^{n+1} = T-dot_pre + dt/2 T-ddot^{n+1}.
+void CentralDifference::correct_velocities(ShellState& s, LocalId le, double dt, double t1) const {
+  using Motion = Constraints::Motion;
+  for (LocalId i = le * position_nodes; i < (le + 1) * position_nodes; ++i) {
     double* v = s.v.point(i);
     const double* acc = s.a.point(i);
-    const int bc = constraints_.prescribing(i);
-    const Vec3 pv = bc >= 0 ? constraints_.prescribed_velocity(bc, t1) : Vec3{0, 0, 0};
-    for (int c = 0; c < 3; ++c) v[c] = constraints_.prescribed(i, c) ? pv[c] : v[c] + 0.5 * dt * acc[c];
+    const Motion motion = constraints_.motion(i);
+    if (motion == Motion::held) continue;
+    if (motion == Motion::prescribed) {
+      const Vec3 pv = constraints_.prescribed_velocity(constraints_.prescribing(i), t1);
+      for (int c = 0; c < 3; ++c) v[c] = constraints_.prescribed(i, c) ? pv[c] : v[c] + 0.5 * dt * acc[c];
+      continue;
+    }
+    for (int c = 0; c < 3; ++c) v[c] += 0.5 * dt * acc[c];
   }
-  for (LocalId j = 0; j < model_.owned * director_nodes; ++j)
+  for (LocalId j = le * director_nodes; j < (le + 1) * director_nodes; ++j)
     for (int c = 0; c < 2; ++c)
       s.director_rate.point(j)[c] = director_rate_predicted_.point(j)[c] + 0.5 * dt * s.director_acceleration.point(j)[c];
 }
 
-// Work of the loads and of the reactions over the step by the trapezoidal rule (docs/theory.md §9.7).
-void CentralDifference::book_work(ShellState& s) const {
-  for (LocalId le = 0; le < model_.owned; ++le) {
-    double wext = 0, wreact = 0;
-    for (int k = 0; k < position_values; ++k) {
-      const std::size_t j = std::size_t(le) * position_values + k;
-      const double dx = s.x.data()[j] - x_start_.data()[j];
-      wext += 0.5 * (fext_start_.data()[j] + s.external_force.data()[j]) * dx;
-      wreact += 0.5 * (reaction_start_.data()[j] + s.reaction.data()[j]) * dx;
-    }
-    *s.external_work.at(le) += wext, *s.reaction_work.at(le) += wreact;
+// Work of the loads and of the reactions on owned element le over the step, by the trapezoidal rule
+// (docs/theory.md §9.7).
+void CentralDifference::book_work(ShellState& s, LocalId le) const {
+  double wext = 0, wreact = 0;
+  const double *x = s.x.at(le), *x0 = x_start_.at(le), *fe = s.external_force.at(le), *fe0 = fext_start_.at(le);
+  const double *R = s.reaction.at(le), *R0 = reaction_start_.at(le);
+  for (int k = 0; k < position_values; ++k) {
+    const double dx = x[k] - x0[k];
+    wext += 0.5 * (fe0[k] + fe[k]) * dx;
+    wreact += 0.5 * (R0[k] + R[k]) * dx;
   }
+  *s.external_work.at(le) += wext, *s.reaction_work.at(le) += wreact;
 }
 
 void CentralDifference::check_finite(const ShellState& s) const {

@@ -31,9 +31,10 @@ class CentralDifference {
   void remember_step_start(const ShellState& s);
   void predict(ShellState& s, double dt, double t1);
   void commit_plasticity(ShellState& s) const;
-  void accelerations(ShellState& s, double t, double dt, const RateRows& director_rate);
-  void correct_velocities(ShellState& s, double dt, double t1) const;
-  void book_work(ShellState& s) const;
+  void correct(ShellState& s, double dt, double t1);
+  void accelerate(ShellState& s, LocalId le, double t, double dt, const RateRows& director_rate);
+  void correct_velocities(ShellState& s, LocalId le, double dt, double t1) const;
+  void book_work(ShellState& s, LocalId le) const;
   void check_finite(const ShellState& s) const;
 
   ShellModel& model_;

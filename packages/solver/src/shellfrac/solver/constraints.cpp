@@ -30,22 +30,6 @@ void PlaneLists::assign(const std::vector<std::vector<Plane>>& lists) {
   }
 }
 
-void PlaneLists::remove_normal_components(LocalId i, double w[3]) const {
-  for (const Plane* p = begin(i); p != end(i); ++p) {
-    const double* n = p->normal.data();
-    const double wn = w[0] * n[0] + w[1] * n[1] + w[2] * n[2];
-    for (int c = 0; c < 3; ++c) w[c] -= wn * n[c];
-  }
-}
-
-void PlaneLists::remove_director_components(LocalId i, const double L[3][3], double w[2]) const {
-  for (const Plane* p = begin(i); p != end(i); ++p) {
-    double d[2];
-    disc::lambda_bar_transpose_times(L, p->normal.data(), d);
-    disc::project_out(w, d);
-  }
-}
-
 Constraints::Constraints(const std::vector<BoundaryCondition>& conditions, const MeshSets& sets,
                          const decomposition::DistributedMesh& dm, const std::string& deck_file)
     : dm_(dm), conditions_(conditions) {
@@ -81,9 +65,16 @@ Constraints::Constraints(const std::vector<BoundaryCondition>& conditions, const
   }
   // A held node is held whatever else acts on it; a prescribed one ignores symmetry planes; a director held by
   // another condition is not rotated.
+  prescribed_components_.assign(no * 6, 0), motion_.assign(no * 6, Motion::free);
   for (LocalId i = 0; i < no * 6; ++i) {
     if (held_by_[i] >= 0) prescribing_[i] = -1;
     if (held_by_[i] >= 0 || prescribing_[i] >= 0) planes_x[i].clear();
+    if (prescribing_[i] >= 0)
+      for (int c = 0; c < 3; ++c) prescribed_components_[i] |= conditions_[prescribing_[i]].components[c] << c;
+    motion_[i] = held_by_[i] >= 0        ? Motion::held
+                 : prescribing_[i] >= 0  ? Motion::prescribed
+                 : !planes_x[i].empty()  ? Motion::on_planes
+                                         : Motion::free;
   }
   for (LocalId j = 0; j < no * 3; ++j) {
     if (director_held_by_[j] < 0 && rotating[j] >= 0) {

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "shellfrac/core/types.hpp"
+#include "shellfrac/disc/director.hpp"
 #include "shellfrac/solver/dynamics_params.hpp"
 #include "shellfrac/solver/shell_state.hpp"
 
@@ -50,10 +51,22 @@ class PlaneLists {
   const Plane* begin(LocalId i) const { return planes_.data() + offset_[i]; }
   const Plane* end(LocalId i) const { return planes_.data() + offset_[i + 1]; }
   /// w -= (w . n) n for each plane normal n of node i, in order.
-  void remove_normal_components(LocalId i, double w[3]) const;
+  void remove_normal_components(LocalId i, double w[3]) const {
+    for (const Plane* p = begin(i); p != end(i); ++p) {
+      const double* n = p->normal.data();
+      const double wn = w[0] * n[0] + w[1] * n[1] + w[2] * n[2];
+      for (int c = 0; c < 3; ++c) w[c] -= wn * n[c];
+    }
+  }
   /// The same for the material components w[2] of a director quantity whose rotation is L: each normal is
   /// expressed as d = Lambda-bar^T n and projected out of w (the director stays in the plane, §10.1).
-  void remove_director_components(LocalId i, const double L[3][3], double w[2]) const;
+  void remove_director_components(LocalId i, const double L[3][3], double w[2]) const {
+    for (const Plane* p = begin(i); p != end(i); ++p) {
+      double d[2];
+      disc::lambda_bar_transpose_times(L, p->normal.data(), d);
+      disc::project_out(w, d);
+    }
+  }
   std::size_t bytes() const { return sizeof(int) * offset_.size() + sizeof(Plane) * planes_.size(); }
 
  private:
@@ -67,14 +80,15 @@ class Constraints {
   Constraints(const std::vector<BoundaryCondition>& conditions, const MeshSets& sets,
               const decomposition::DistributedMesh& dm, const std::string& deck_file);
 
-  // Position node i = le * 6 + A of an owned element.
-  bool held(LocalId i) const { return held_by_[i] >= 0; }
+  /// How position node i = le * 6 + A of an owned element moves: freely, freely but on symmetry planes, with some
+  /// components prescribed, or not at all.
+  enum class Motion : unsigned char { free, on_planes, prescribed, held };
+  Motion motion(LocalId i) const { return motion_[i]; }
+  bool held(LocalId i) const { return motion_[i] == Motion::held; }
   /// The Prescribed Velocity condition that drives node i, or -1.
   int prescribing(LocalId i) const { return prescribing_[i]; }
   /// Whether component c of node i follows a velocity program.
-  bool prescribed(LocalId i, int c) const {
-    return prescribing_[i] >= 0 && conditions_[prescribing_[i]].components[c];
-  }
+  bool prescribed(LocalId i, int c) const { return (prescribed_components_[i] >> c) & 1; }
   /// Whether node i moves freely in component c (not held, not prescribed in c).
   bool free(LocalId i, int c) const { return !held(i) && !prescribed(i, c); }
   const PlaneLists& position_planes() const { return position_planes_; }
@@ -119,6 +133,8 @@ class Constraints {
   std::vector<BoundaryCondition> conditions_;
   std::vector<CosineRamp> ramps_;            // per condition
   std::vector<int> held_by_, prescribing_;   // per owned position node: condition index or -1
+  std::vector<unsigned char> prescribed_components_;  // per owned position node: bit c = component c prescribed
+  std::vector<Motion> motion_;                         // per owned position node
   std::vector<int> director_held_by_;        // per owned director node: condition index or -1
   std::vector<std::uint32_t> acts_on_;       // per owned position node: bit b set if condition b acts on it
   PlaneLists position_planes_, director_planes_;  // per owned position / director node
