@@ -3,7 +3,7 @@
 /// The strip with one breakable edge shared by test_fracture and test_restart (docs/verification.md §5.2): the
 /// Rectangle [0, 2L] x [0, b], 100 x 1 cells (1 mm), right diagonals, with node sets "crack" (x = L) and
 /// "quarter" (x = L/2) and the side set "crack" (the edges at x = L, from the left elements), and the deck
-/// fragment that pulls both ends outward at V with only that side set breakable.
+/// that pulls both ends outward at V with only that side set breakable.
 #include <cmath>
 #include <string>
 
@@ -43,17 +43,17 @@ inline void write_cracked_strip(const std::string& path) {
   meshio::write_exodus_mesh(m, path);
 }
 
-/// Deck fragment: Fracture->Edges = crack, and both ends pulled outward at 20 m/s from t = 0.
-inline std::string pulled_strip_conditions() {
-  return "<ParameterList name=\"Fracture\"><Parameter name=\"Edges\" type=\"string\" value=\"crack\"/></ParameterList>\n"
-         "<ParameterList name=\"Boundary Conditions\">"
-         "<ParameterList name=\"left\"><Parameter name=\"Type\" type=\"string\" value=\"Prescribed Velocity\"/>"
-         "<Parameter name=\"Node Set\" type=\"string\" value=\"x_min\"/>"
-         "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{-20.0, 0.0, 0.0}\"/></ParameterList>"
-         "<ParameterList name=\"right\"><Parameter name=\"Type\" type=\"string\" value=\"Prescribed Velocity\"/>"
-         "<Parameter name=\"Node Set\" type=\"string\" value=\"x_max\"/>"
-         "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{20.0, 0.0, 0.0}\"/></ParameterList>"
-         "</ParameterList>\n";
+/// The strip's deck: the mesh file `mesh_file` (relative to the deck's directory), the block "shell" of material
+/// "m" with `section`, Fracture->Edges = crack, and both ends pulled outward at 20 m/s from t = 0; results written
+/// to `out_dir`. Add the time integration, the probes and the material's fracture parameters.
+inline Teuchos::RCP<Teuchos::ParameterList> pulled_strip_deck(const std::string& out_dir, const std::string& mesh_file,
+                                                              const ShellSection& section) {
+  auto deck = base_deck(section, out_dir);
+  set_mesh_file(*deck, mesh_file);
+  deck->sublist("Fracture").set("Edges", std::string("crack"));
+  boundary_condition(*deck, "left", "Prescribed Velocity", "x_min").set("Velocity", vec3(-20.0, 0.0, 0.0));
+  boundary_condition(*deck, "right", "Prescribed Velocity", "x_max").set("Velocity", vec3(20.0, 0.0, 0.0));
+  return deck;
 }
 
 }  // namespace shellfrac::test

@@ -1,8 +1,8 @@
 #pragma once
 /// \file deck_test_util.hpp
 /// Helpers shared by the solver tests that run whole decks: a per-test, per-rank-count working directory,
-/// a deck built from XML fragments, writing a file on rank 0, reading the history CSV back, and the
-/// period of an oscillating history column from its upward zero crossings.
+/// a deck built as a Teuchos::ParameterList (from scratch or from an example deck of xml/) and written on rank 0,
+/// reading the history CSV back, and the period of an oscillating history column from its upward zero crossings.
 #include <mpi.h>
 
 #include <algorithm>
@@ -39,32 +39,6 @@ struct ShellSection {
   double thickness = 0.1, density = 1.0, young = 2.1e6, poisson = 0.3;
 };
 
-inline std::string xml_double(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
-}
-
-/// A whole deck: `mesh` (the Mesh sublist), the block "shell" of material "m" with `section`, `body` (time
-/// integration, conditions, ...), and the Output sublist writing to `out_dir` with the probe list `probes`
-/// (an Array(string) value such as "{y_max}").
-inline std::string deck(const std::string& mesh, const std::string& body, const std::string& out_dir,
-                        const std::string& probes = "{y_max}", const ShellSection& section = {}) {
-  return "<ParameterList name=\"shellfrac\">\n" + mesh +
-         "<ParameterList name=\"Blocks\"><ParameterList name=\"shell\">"
-         "<Parameter name=\"Thickness\" type=\"double\" value=\"" + xml_double(section.thickness) + "\"/>"
-         "<Parameter name=\"Material\" type=\"string\" value=\"m\"/></ParameterList></ParameterList>\n"
-         "<ParameterList name=\"Materials\"><ParameterList name=\"m\">"
-         "<Parameter name=\"Density\" type=\"double\" value=\"" + xml_double(section.density) + "\"/>"
-         "<Parameter name=\"Young's Modulus\" type=\"double\" value=\"" + xml_double(section.young) + "\"/>"
-         "<Parameter name=\"Poisson's Ratio\" type=\"double\" value=\"" + xml_double(section.poisson) +
-         "\"/></ParameterList></ParameterList>\n" +
-         body + "<ParameterList name=\"Output\"><Parameter name=\"Directory\" type=\"string\" value=\"" + out_dir +
-         "\"/><Parameter name=\"Probes\" type=\"Array(string)\" value=\"" + probes + "\"/></ParameterList>\n"
-         "</ParameterList>\n";
-}
-
 /// A 3-component array parameter.
 inline Teuchos::Array<double> vec3(double x, double y, double z) {
   return Teuchos::Array<double>(Teuchos::tuple<double>(x, y, z));
@@ -95,16 +69,68 @@ inline void set_rectangle(Teuchos::ParameterList& deck, double lx, double ly, in
   r.set("Diagonal Pattern", pattern), r.set("Block Name", std::string("shell"));
 }
 
-/// Writes a parameter-list deck as XML to `path` on rank 0. Collective.
-inline void write_deck(const std::string& path, const Teuchos::ParameterList& deck) {
-  if (parallel::rank() == 0) Teuchos::writeParameterListToXmlFile(deck, path);
-  MPI_Barrier(MPI_COMM_WORLD);
+/// Sets the deck's Mesh to a Cylindrical Panel generator of radius r, length l and opening `angle` (degrees),
+/// n_axial x n_circ cells, block "shell".
+inline void set_cylindrical_panel(Teuchos::ParameterList& deck, double r, double l, double angle, int n_axial,
+                                  int n_circ) {
+  auto& mesh = deck.sublist("Mesh");
+  mesh.set("Source", std::string("Cylindrical Panel"));
+  auto& p = mesh.sublist("Cylindrical Panel");
+  p.set("Radius", r), p.set("Length", l), p.set("Angle", angle);
+  p.set("Axial Elements", n_axial), p.set("Circumferential Elements", n_circ), p.set("Block Name", std::string("shell"));
 }
 
-/// Writes `text` to `path` on rank 0. Collective.
-inline void write_file(const std::string& path, const std::string& text) {
-  if (parallel::rank() == 0) std::ofstream(path) << text;
-  MPI_Barrier(MPI_COMM_WORLD);
+/// Sets the deck's Mesh to the mesh file `file` (a relative path is relative to the deck's directory).
+inline void set_mesh_file(Teuchos::ParameterList& deck, const std::string& file) {
+  auto& mesh = deck.sublist("Mesh");
+  mesh.set("Source", std::string("File")), mesh.set("File", file);
+}
+
+/// Sets Output->Probes, the node sets whose mean motion the history records (none if empty).
+inline void set_probes(Teuchos::ParameterList& deck, const std::vector<std::string>& node_sets) {
+  deck.sublist("Output").set("Probes", Teuchos::Array<std::string>(node_sets.begin(), node_sets.end()));
+}
+
+/// The material "m" of the block "shell" (base_deck), to add e.g. plasticity or fracture parameters to.
+inline Teuchos::ParameterList& shell_material(Teuchos::ParameterList& deck) {
+  return deck.sublist("Materials").sublist("m");
+}
+
+/// Adds Boundary Conditions-><name> of `type` on `node_set`; returns it for the type's other parameters.
+inline Teuchos::ParameterList& boundary_condition(Teuchos::ParameterList& deck, const std::string& name,
+                                                  const std::string& type, const std::string& node_set) {
+  auto& bc = deck.sublist("Boundary Conditions").sublist(name);
+  bc.set("Type", type), bc.set("Node Set", node_set);
+  return bc;
+}
+
+/// Adds Initial Conditions-><name>: the initial `velocity` of the elements `elements`; returns it for further
+/// parameters (Angular Velocity, Center).
+inline Teuchos::ParameterList& initial_velocity(Teuchos::ParameterList& deck, const std::string& name,
+                                                const std::string& elements, const Teuchos::Array<double>& velocity) {
+  auto& ic = deck.sublist("Initial Conditions").sublist(name);
+  ic.set("Elements", elements), ic.set("Velocity", velocity);
+  return ic;
+}
+
+/// The example deck xml/<name> of the source tree, made to run from a test: its mesh file (relative to xml/ in
+/// the examples) by absolute path, and its results written to `out_dir`. Edit it with sublist(...).set(...).
+inline Teuchos::RCP<Teuchos::ParameterList> example_deck(const std::string& name, const std::string& out_dir) {
+  const std::string xml_dir = std::string(SHELLFRAC_SOURCE_DIR) + "/xml/";
+  auto deck = Teuchos::getParametersFromXmlFile(xml_dir + name);
+  if (deck->isSublist("Mesh") && deck->sublist("Mesh").isType<std::string>("File")) {
+    auto& mesh = deck->sublist("Mesh");
+    const std::string file = mesh.get<std::string>("File");
+    if (!file.empty() && file.front() != '/') mesh.set("File", xml_dir + file);
+  }
+  deck->sublist("Output").set("Directory", out_dir);
+  return deck;
+}
+
+/// Writes a parameter-list deck as XML to `path` on rank 0 of `comm`. Collective over `comm`.
+inline void write_deck(const std::string& path, const Teuchos::ParameterList& deck, MPI_Comm comm = MPI_COMM_WORLD) {
+  if (parallel::rank(comm) == 0) Teuchos::writeParameterListToXmlFile(deck, path);
+  MPI_Barrier(comm);
 }
 
 /// History CSV as rows of numbers (header dropped), with the header returned separately.
@@ -187,53 +213,12 @@ inline double peak_frequency(const std::vector<std::vector<double>>& rows, std::
   return 0.5 * (lo + hi);
 }
 
-/// The Mesh sublist of a Rectangle generator [0, lx] x [0, ly], nx x ny cells, Alternating diagonals, block "shell".
-inline std::string rectangle_mesh(double lx, double ly, int nx, int ny) {
-  return "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"Rectangle\"/>"
-         "<ParameterList name=\"Rectangle\"><Parameter name=\"Length\" type=\"double\" value=\"" + xml_double(lx) +
-         "\"/><Parameter name=\"Width\" type=\"double\" value=\"" + xml_double(ly) + "\"/>"
-         "<Parameter name=\"Elements Along Length\" type=\"int\" value=\"" + std::to_string(nx) + "\"/>"
-         "<Parameter name=\"Elements Along Width\" type=\"int\" value=\"" + std::to_string(ny) + "\"/>"
-         "<Parameter name=\"Diagonal Pattern\" type=\"string\" value=\"Alternating\"/>"
-         "<Parameter name=\"Block Name\" type=\"string\" value=\"shell\"/></ParameterList></ParameterList>\n";
-}
-
-/// The Mesh sublist of a Cylindrical Panel generator (angle in degrees), block "shell".
-inline std::string cylindrical_panel_mesh(double r, double l, double angle, int n_axial, int n_circ) {
-  return "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"Cylindrical Panel\"/>"
-         "<ParameterList name=\"Cylindrical Panel\"><Parameter name=\"Radius\" type=\"double\" value=\"" +
-         xml_double(r) + "\"/><Parameter name=\"Length\" type=\"double\" value=\"" + xml_double(l) +
-         "\"/><Parameter name=\"Angle\" type=\"double\" value=\"" + xml_double(angle) + "\"/>"
-         "<Parameter name=\"Axial Elements\" type=\"int\" value=\"" + std::to_string(n_axial) + "\"/>"
-         "<Parameter name=\"Circumferential Elements\" type=\"int\" value=\"" + std::to_string(n_circ) + "\"/>"
-         "<Parameter name=\"Block Name\" type=\"string\" value=\"shell\"/></ParameterList></ParameterList>\n";
-}
-
+/// The whole text of the file `path`.
 inline std::string slurp(const std::string& path) {
   std::ifstream in(path);
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
-}
-
-/// Replaces the first occurrence of `from` in `text` (which must be there) by `to`.
-inline void replace(std::string& text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  ASSERT_NE(at, std::string::npos) << from;
-  text.replace(at, from.size(), to);
-}
-
-/// The example deck xml/<name> of the source tree, made to run from a test: its mesh files ("meshes/...")
-/// by absolute path, and its results written to `out_dir` (a Directory entry before its Probes).
-inline std::string example_deck(const std::string& name, const std::string& out_dir) {
-  std::string text = slurp(std::string(SHELLFRAC_SOURCE_DIR) + "/xml/" + name);
-  EXPECT_FALSE(text.empty()) << "xml/" << name;
-  const auto at = text.find("value=\"meshes/");
-  if (at != std::string::npos)
-    text.replace(at, 14, "value=\"" + std::string(SHELLFRAC_SOURCE_DIR) + "/xml/meshes/");
-  replace(text, "<Parameter name=\"Probes\"",
-          "<Parameter name=\"Directory\" type=\"string\" value=\"" + out_dir + "\"/><Parameter name=\"Probes\"");
-  return text;
 }
 
 }  // namespace shellfrac::test

@@ -6,8 +6,10 @@
 #include <mpi.h>
 
 #include <filesystem>
-#include <fstream>
 #include <string>
+
+#include <Teuchos_ParameterList.hpp>
+#include <Teuchos_XMLParameterListCoreHelpers.hpp>
 
 #include "deck_test_util.hpp"
 #include "shellfrac/io/exodus_results.hpp"
@@ -15,20 +17,17 @@
 
 namespace shellfrac::test {
 
-/// On rank 0 of a run on more than one rank: runs `deck_text` (whose Output Directory is `dir`) serially
-/// (MPI_COMM_SELF) into dir/serial and expects its history and every Exodus nodal and element value except
-/// `rank` to equal those of `par` bitwise, and the same fragment table and crack log if there are any.
-/// Collective (ends with a barrier).
-inline void expect_same_as_serial(const solver::Simulation& par, const std::string& deck_text, const std::string& dir,
-                                  const std::string& name) {
+/// On rank 0 of a run on more than one rank: runs `deck` (whose Output Directory is `dir`) serially (MPI_COMM_SELF)
+/// into dir/serial and expects its history and every Exodus nodal and element value except `rank` to equal those
+/// of `par` bitwise, and the same fragment table and crack log if there are any. Collective (ends with a barrier).
+inline void expect_same_as_serial(const solver::Simulation& par, const Teuchos::ParameterList& deck,
+                                  const std::string& dir, const std::string& name) {
   if (parallel::size() > 1 && parallel::rank() == 0) {
     std::filesystem::create_directories(dir + "/serial");
-    std::string serial = deck_text;
-    const std::string from = "value=\"" + dir + "\"";
-    const auto at = serial.find(from);
-    ASSERT_NE(at, std::string::npos) << "the deck must write to " << dir;
-    serial.replace(at, from.size(), "value=\"" + dir + "/serial\"");
-    std::ofstream(dir + "/" + name + "_serial.xml") << serial;
+    ASSERT_EQ(deck.sublist("Output").get<std::string>("Directory"), dir) << "the deck must write to " << dir;
+    Teuchos::ParameterList serial = deck;
+    serial.sublist("Output").set("Directory", dir + "/serial");
+    Teuchos::writeParameterListToXmlFile(serial, dir + "/" + name + "_serial.xml");
     solver::Simulation ser(dir + "/" + name + "_serial.xml", MPI_COMM_SELF);
     ser.run();
     EXPECT_EQ(slurp(par.history_path()), slurp(ser.history_path())) << "history differs from the serial run";

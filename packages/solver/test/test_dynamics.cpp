@@ -21,35 +21,30 @@ using namespace shellfrac::test;
 
 namespace {
 
-std::string rectangle(int nx, int ny) { return rectangle_mesh(1.0, 1.5, nx, ny); }
+/// The cantilever plate 1.0 x 1.5 on nx x ny cells (the default ShellSection) clamped on its edge y_min, every
+/// element kicked at {0, 0, 1}; probe y_max. Add the time integration.
+Teuchos::RCP<Teuchos::ParameterList> cantilever_deck(const std::string& dir, int nx, int ny) {
+  auto deck = base_deck({}, dir);
+  set_rectangle(*deck, 1.0, 1.5, nx, ny);
+  boundary_condition(*deck, "root", "Clamped", "y_min");
+  initial_velocity(*deck, "kick", "all", vec3(0.0, 0.0, 1.0));
+  set_probes(*deck, {"y_max"});
+  return deck;
+}
 
-const std::string cantilever_conditions =
-    "<ParameterList name=\"Boundary Conditions\"><ParameterList name=\"root\">"
-    "<Parameter name=\"Type\" type=\"string\" value=\"Clamped\"/>"
-    "<Parameter name=\"Node Set\" type=\"string\" value=\"y_min\"/></ParameterList></ParameterList>\n"
-    "<ParameterList name=\"Initial Conditions\"><ParameterList name=\"kick\">"
-    "<Parameter name=\"Elements\" type=\"string\" value=\"all\"/>"
-    "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{0.0, 0.0, 1.0}\"/></ParameterList></ParameterList>\n";
-
-}  // namespace
-
-namespace {
 /// Runs a free curved panel (fixed step 3e-5, below the stable estimate 3.48e-5) with the translation
 /// {1, 2, -3} plus the spin `omega` for 10 000 steps; returns the history.
-std::vector<std::vector<double>> spin_run(const std::string& name, const std::string& omega, std::vector<std::string>& h) {
+std::vector<std::vector<double>> spin_run(const std::string& name, const Teuchos::Array<double>& omega,
+                                          std::vector<std::string>& h) {
   const auto dir = work_dir(name);
-  const std::string panel = cylindrical_panel_mesh(1.0, 1.5, 90, 4, 3);
-  const std::string body =
-      "<ParameterList name=\"Time Integration\"><Parameter name=\"Time Step\" type=\"double\" value=\"3e-5\"/>"
-      "<Parameter name=\"End Time\" type=\"double\" value=\"0.3\"/>"
-      "<Parameter name=\"History Interval\" type=\"int\" value=\"500\"/></ParameterList>\n"
-      "<ParameterList name=\"Initial Conditions\"><ParameterList name=\"spin\">"
-      "<Parameter name=\"Elements\" type=\"string\" value=\"all\"/>"
-      "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{1.0, 2.0, -3.0}\"/>"
-      "<Parameter name=\"Angular Velocity\" type=\"Array(double)\" value=\"" + omega + "\"/>"
-      "<Parameter name=\"Center\" type=\"Array(double)\" value=\"{0.75, 0.0, 0.7}\"/>"
-      "</ParameterList></ParameterList>\n";
-  write_file(dir + "/" + name + ".xml", deck(panel, body, dir, "{x_max}"));
+  auto deck = base_deck({}, dir);
+  set_cylindrical_panel(*deck, 1.0, 1.5, 90, 4, 3);
+  auto& time = deck->sublist("Time Integration");
+  time.set("Time Step", 3e-5), time.set("End Time", 0.3), time.set("History Interval", 500);
+  auto& spin = initial_velocity(*deck, "spin", "all", vec3(1.0, 2.0, -3.0));
+  spin.set("Angular Velocity", omega), spin.set("Center", vec3(0.75, 0.0, 0.7));
+  set_probes(*deck, {"x_max"});
+  write_deck(dir + "/" + name + ".xml", *deck);
   solver::Simulation sim(dir + "/" + name + ".xml");
   sim.run();
   MPI_Barrier(MPI_COMM_WORLD);
@@ -59,7 +54,7 @@ std::vector<std::vector<double>> spin_run(const std::string& name, const std::st
 
 TEST(Dynamics, RigidTranslationOf10000Steps) {
   std::vector<std::string> header;
-  const auto rows = spin_run("rigid", "{0.0, 0.0, 0.0}", header);
+  const auto rows = spin_run("rigid", vec3(0.0, 0.0, 0.0), header);
   if (parallel::rank() != 0) return;
   ASSERT_EQ(header[3], "kinetic_energy");
   ASSERT_EQ(rows.back()[0], 10000);
@@ -83,7 +78,7 @@ TEST(Dynamics, RigidTranslationOf10000Steps) {
 // centrifugal strain energy, which scales as w^4: strain + penalty <= 1e-10 of the kinetic energy.
 TEST(Dynamics, SpinConservesAngularMomentumAndEnergy) {
   std::vector<std::string> h;
-  const auto rows = spin_run("spin_fast", "{30.0, -20.0, 50.0}", h);
+  const auto rows = spin_run("spin_fast", vec3(30.0, -20.0, 50.0), h);
   if (parallel::rank() == 0) {
     const auto kx = column(h, "angular_momentum_x"), k = column(h, "kinetic_energy");
     ASSERT_LT(kx + 2, h.size());
@@ -98,7 +93,7 @@ TEST(Dynamics, SpinConservesAngularMomentumAndEnergy) {
     }
     EXPECT_GT(max_strain, 1e-4);  // the centrifugal stretching is really there
   }
-  const auto slow = spin_run("spin_slow", "{0.003, -0.002, 0.005}", h);
+  const auto slow = spin_run("spin_slow", vec3(0.003, -0.002, 0.005), h);
   if (parallel::rank() == 0) {
     const auto k = column(h, "kinetic_energy");
     for (const auto& r : slow) EXPECT_LE(r[k + 1] + r[k + 2], 1e-10 * r[k]) << "step " << r[0];
@@ -112,12 +107,12 @@ TEST(Dynamics, SpinConservesAngularMomentumAndEnergy) {
 // pattern is not symmetric in th, so the mean y-component is not zero.)
 TEST(Dynamics, NormalInitialVelocity) {
   const auto dir = work_dir("normal_velocity");
-  const std::string panel = cylindrical_panel_mesh(1.0, 1.5, 90, 4, 4);
-  const std::string body =
-      "<ParameterList name=\"Initial Conditions\"><ParameterList name=\"blast\">"
-      "<Parameter name=\"Elements\" type=\"string\" value=\"shell\"/>"
-      "<Parameter name=\"Normal Velocity\" type=\"double\" value=\"2.0\"/></ParameterList></ParameterList>\n";
-  write_file(dir + "/nv.xml", deck(panel, body, dir, "{x_max}"));
+  auto deck = base_deck({}, dir);
+  set_cylindrical_panel(*deck, 1.0, 1.5, 90, 4, 4);
+  auto& blast = deck->sublist("Initial Conditions").sublist("blast");
+  blast.set("Elements", std::string("shell")), blast.set("Normal Velocity", 2.0);
+  set_probes(*deck, {"x_max"});
+  write_deck(dir + "/nv.xml", *deck);
   solver::Simulation sim(dir + "/nv.xml");
   sim.run();
   MPI_Barrier(MPI_COMM_WORLD);
@@ -132,13 +127,11 @@ TEST(Dynamics, NormalInitialVelocity) {
 
 TEST(Dynamics, BitwiseIdenticalOnAnyRankCount) {
   const auto dir = work_dir("bitwise");
-  const std::string body =
-      "<ParameterList name=\"Time Integration\"><Parameter name=\"End Time\" type=\"double\" value=\"0.004\"/>"
-      "<Parameter name=\"History Interval\" type=\"int\" value=\"10\"/>"
-      "<Parameter name=\"Output Interval\" type=\"double\" value=\"0.002\"/></ParameterList>\n" +
-      cantilever_conditions;
-  write_file(dir + "/par.xml", deck(rectangle(4, 6), body, dir));
-  write_file(dir + "/ser.xml", deck(rectangle(4, 6), body, dir));
+  const auto deck = cantilever_deck(dir, 4, 6);
+  auto& time = deck->sublist("Time Integration");
+  time.set("End Time", 0.004), time.set("History Interval", 10), time.set("Output Interval", 0.002);
+  write_deck(dir + "/par.xml", *deck);
+  write_deck(dir + "/ser.xml", *deck);
   solver::Simulation par(dir + "/par.xml");
   par.run();
   MPI_Barrier(MPI_COMM_WORLD);
@@ -160,11 +153,10 @@ TEST(Dynamics, BitwiseIdenticalOnAnyRankCount) {
 TEST(Dynamics, CantileverPlateFirstFrequencyAndEnergy) {
   if (parallel::size() > 1) GTEST_SKIP() << "serial verification (the rank-count independence is tested above)";
   const auto dir = work_dir("cantilever");
-  const std::string body =
-      "<ParameterList name=\"Time Integration\"><Parameter name=\"End Time\" type=\"double\" value=\"0.3\"/>"
-      "<Parameter name=\"History Interval\" type=\"int\" value=\"10\"/></ParameterList>\n" +
-      cantilever_conditions;
-  write_file(dir + "/cantilever.xml", deck(rectangle(8, 12), body, dir));
+  const auto deck = cantilever_deck(dir, 8, 12);
+  auto& time = deck->sublist("Time Integration");
+  time.set("End Time", 0.3), time.set("History Interval", 10);
+  write_deck(dir + "/cantilever.xml", *deck);
   solver::Simulation sim(dir + "/cantilever.xml");
   sim.run();
   std::vector<std::string> header;

@@ -43,21 +43,31 @@ void write_strip(const std::string& path) {
   MPI_Barrier(MPI_COMM_WORLD);
 }
 
-std::string strip_deck(const std::string& dir, double strength) {
-  const std::string body =
-      "<ParameterList name=\"Time Integration\"><Parameter name=\"End Time\" type=\"double\" value=\"14e-6\"/>"
-      "</ParameterList>\n" +
-      pulled_strip_conditions();
-  const std::string mesh_xml =
-      "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"File\"/>"
-      "<Parameter name=\"File\" type=\"string\" value=\"strip_mesh.exo\"/></ParameterList>\n";
-  std::string text = deck(mesh_xml, body, dir, "{crack, quarter}", {h, rho, E, 0.0});
-  const std::string at = "<Parameter name=\"Density\"";
-  text.replace(text.find(at), 0,
-               "<Parameter name=\"Cohesive Strength\" type=\"double\" value=\"" + xml_double(strength) +
-                   "\"/><Parameter name=\"Fracture Energy\" type=\"double\" value=\"" +
-                   xml_double(strength > 0 ? Gamma : 0.0) + "\"/>");
-  return text;
+/// The strip's deck (cracked_strip.hpp) run to 14 us with the cohesive strength `strength` (0: cannot break);
+/// probes crack and quarter.
+Teuchos::RCP<Teuchos::ParameterList> strip_deck(const std::string& dir, double strength) {
+  auto deck = pulled_strip_deck(dir, "strip_mesh.exo", {h, rho, E, 0.0});
+  deck->sublist("Time Integration").set("End Time", 14e-6);
+  auto& material = shell_material(*deck);
+  material.set("Cohesive Strength", strength), material.set("Fracture Energy", strength > 0 ? Gamma : 0.0);
+  set_probes(*deck, {"crack", "quarter"});
+  return deck;
+}
+
+/// A clamped 6061-T6 beam (paper §6.3 data, Gamma = 0), 0.2 x 0.025 on 40 x 5 cells, hit at 225 m/s; no probes.
+Teuchos::RCP<Teuchos::ParameterList> clamped_beam_deck(const std::string& dir) {
+  auto deck = base_deck({6.53e-3, 2693, 68.9e9, 0.343}, dir);
+  set_rectangle(*deck, 0.2, 0.025, 40, 5);
+  auto& time = deck->sublist("Time Integration");
+  time.set("End Time", 3e-5), time.set("History Interval", 5), time.set("Output Interval", 1e-5);
+  boundary_condition(*deck, "left", "Clamped", "x_min");
+  boundary_condition(*deck, "right", "Clamped", "x_max");
+  initial_velocity(*deck, "impulse", "all", vec3(0.0, 0.0, -225.0));
+  auto& material = shell_material(*deck);
+  material.set("Model", std::string("Resultant Plasticity")), material.set("Yield Stress", 275e6);
+  material.set("Hardening Modulus", 1.33e9), material.set("Cohesive Strength", 375e6);
+  set_probes(*deck, {});
+  return deck;
 }
 
 }  // namespace
@@ -65,8 +75,8 @@ std::string strip_deck(const std::string& dir, double strength) {
 TEST(Fracture, StripWithOneCohesiveEdge) {
   const auto dir = work_dir("fracture_strip");
   write_strip(dir + "/strip_mesh.exo");
-  write_file(dir + "/strip.xml", strip_deck(dir, sigma_c));
-  write_file(dir + "/intact.xml", strip_deck(dir, 0.0));
+  write_deck(dir + "/strip.xml", *strip_deck(dir, sigma_c));
+  write_deck(dir + "/intact.xml", *strip_deck(dir, 0.0));
   solver::Simulation sim(dir + "/strip.xml");
   sim.run();
   solver::Simulation intact(dir + "/intact.xml");
@@ -130,25 +140,8 @@ TEST(Fracture, StripWithOneCohesiveEdge) {
 
 TEST(Fracture, SameBreaksOnAnyRankCount) {
   const auto dir = work_dir("fracture_beam");
-  const std::string body =
-      "<ParameterList name=\"Time Integration\"><Parameter name=\"End Time\" type=\"double\" value=\"3e-5\"/>"
-      "<Parameter name=\"History Interval\" type=\"int\" value=\"5\"/>"
-      "<Parameter name=\"Output Interval\" type=\"double\" value=\"1e-5\"/></ParameterList>\n"
-      "<ParameterList name=\"Boundary Conditions\">"
-      "<ParameterList name=\"left\"><Parameter name=\"Type\" type=\"string\" value=\"Clamped\"/>"
-      "<Parameter name=\"Node Set\" type=\"string\" value=\"x_min\"/></ParameterList>"
-      "<ParameterList name=\"right\"><Parameter name=\"Type\" type=\"string\" value=\"Clamped\"/>"
-      "<Parameter name=\"Node Set\" type=\"string\" value=\"x_max\"/></ParameterList></ParameterList>\n"
-      "<ParameterList name=\"Initial Conditions\"><ParameterList name=\"impulse\">"
-      "<Parameter name=\"Elements\" type=\"string\" value=\"all\"/>"
-      "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{0.0, 0.0, -225.0}\"/></ParameterList></ParameterList>\n";
-  std::string text = deck(rectangle_mesh(0.2, 0.025, 40, 5), body, dir, "{}", {6.53e-3, 2693, 68.9e9, 0.343});
-  text.replace(text.find("<Parameter name=\"Density\""), 0,
-               "<Parameter name=\"Model\" type=\"string\" value=\"Resultant Plasticity\"/>"
-               "<Parameter name=\"Yield Stress\" type=\"double\" value=\"275e6\"/>"
-               "<Parameter name=\"Hardening Modulus\" type=\"double\" value=\"1.33e9\"/>"
-               "<Parameter name=\"Cohesive Strength\" type=\"double\" value=\"375e6\"/>");
-  write_file(dir + "/beam.xml", text);
+  const auto deck = clamped_beam_deck(dir);
+  write_deck(dir + "/beam.xml", *deck);
   solver::Simulation sim(dir + "/beam.xml");
   sim.run();
   MPI_Barrier(MPI_COMM_WORLD);
@@ -165,17 +158,17 @@ TEST(Fracture, SameBreaksOnAnyRankCount) {
     for (std::size_t k = column(hc, "share_normal"); k < hc.size(); ++k) sum += r[k];
     EXPECT_NEAR(sum, 1.0, 1e-12);
   }
-  expect_same_as_serial(sim, text, dir, "beam");
+  expect_same_as_serial(sim, *deck, dir, "beam");
 }
 
-// A clamping fixture that is part of the mesh (boundary condition with Elements = its block): only the
-// fixture's DG copies of the border nodes are held, so the beam's copies move and the edges on the border are
-// interior edges that can break. References: the definition of the option (docs/theory.md, "Conditions and
-// loads"); the border edges are where the shear force of a suddenly stopped beam is largest, so at 225 m/s with
-// an elastic shear force (docs/beam_blast.md: threshold sigma_c/(rho c_s') = 49 m/s) they break first.
-TEST(Fracture, FixtureBorderEdgesBreak) {
-  const auto dir = work_dir("fracture_fixture");
-  constexpr double lf = 0.01, span = 0.2, width = 0.025, hb = 6.53e-3;  // 2 fixture cells of 5 mm each side
+namespace {
+
+constexpr double fixture_length = 0.01, span = 0.2, width = 0.025, hb = 6.53e-3;  // 2 fixture cells of 5 mm each side
+
+/// Writes on rank 0 the beam [0, span] x [0, width] (40 x 5 cells) with the fixture block "fixture" (2 cells of
+/// 5 mm) beyond each end, P2. Collective.
+void write_fixture_mesh(const std::string& path) {
+  constexpr double lf = fixture_length;
   if (parallel::rank() == 0) {
     auto m = mesh::make_rectangle(span + 2 * lf, width, 44, 5, mesh::DiagonalPattern::Alternating, -lf);
     m.blocks.push_back({"fixture", 2});
@@ -185,32 +178,37 @@ TEST(Fracture, FixtureBorderEdgesBreak) {
       if (xc < 0 || xc > span) m.element_block[e] = 1;
     }
     mesh::promote_to_p2(m);
-    meshio::write_exodus_mesh(m, dir + "/fixture_mesh.exo");
+    meshio::write_exodus_mesh(m, path);
   }
   MPI_Barrier(MPI_COMM_WORLD);
-  const std::string body =
-      "<ParameterList name=\"Time Integration\"><Parameter name=\"End Time\" type=\"double\" value=\"3e-6\"/>"
-      "<Parameter name=\"Output Interval\" type=\"double\" value=\"1e-6\"/></ParameterList>\n"
-      "<ParameterList name=\"Boundary Conditions\">"
-      "<ParameterList name=\"fixture\"><Parameter name=\"Type\" type=\"string\" value=\"Clamped\"/>"
-      "<Parameter name=\"Node Set\" type=\"string\" value=\"all\"/>"
-      "<Parameter name=\"Elements\" type=\"string\" value=\"fixture\"/></ParameterList></ParameterList>\n"
-      "<ParameterList name=\"Initial Conditions\"><ParameterList name=\"impulse\">"
-      "<Parameter name=\"Elements\" type=\"string\" value=\"shell\"/>"
-      "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{0.0, 0.0, -225.0}\"/></ParameterList></ParameterList>\n";
-  const std::string mesh_xml =
-      "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"File\"/>"
-      "<Parameter name=\"File\" type=\"string\" value=\"fixture_mesh.exo\"/></ParameterList>\n";
-  std::string text = deck(mesh_xml, body, dir, "{}", {hb, 2693, 68.9e9, 0.343});
-  text.replace(text.find("<Parameter name=\"Density\""), 0,
-               "<Parameter name=\"Cohesive Strength\" type=\"double\" value=\"375e6\"/>");
-  const std::string blocks_end = "</ParameterList></ParameterList>";  // end of the block "shell" and of Blocks
-  const auto at = text.find(blocks_end, text.find("<ParameterList name=\"Blocks\">"));
-  ASSERT_NE(at, std::string::npos);
-  text.insert(at + std::string("</ParameterList>").size(),
-              "<ParameterList name=\"fixture\"><Parameter name=\"Thickness\" type=\"double\" value=\"" +
-                  xml_double(hb) + "\"/><Parameter name=\"Material\" type=\"string\" value=\"m\"/></ParameterList>");
-  write_file(dir + "/fixture.xml", text);
+}
+
+/// The beam of fixture_mesh.exo hit at 225 m/s, its fixture (a second block of the same material) clamped; no probes.
+Teuchos::RCP<Teuchos::ParameterList> fixture_deck(const std::string& dir) {
+  auto deck = base_deck({hb, 2693, 68.9e9, 0.343}, dir);
+  set_mesh_file(*deck, "fixture_mesh.exo");
+  auto& fixture = deck->sublist("Blocks").sublist("fixture");
+  fixture.set("Thickness", hb), fixture.set("Material", std::string("m"));
+  auto& time = deck->sublist("Time Integration");
+  time.set("End Time", 3e-6), time.set("Output Interval", 1e-6);
+  boundary_condition(*deck, "fixture", "Clamped", "all").set("Elements", std::string("fixture"));
+  initial_velocity(*deck, "impulse", "shell", vec3(0.0, 0.0, -225.0));
+  shell_material(*deck).set("Cohesive Strength", 375e6);
+  set_probes(*deck, {});
+  return deck;
+}
+
+}  // namespace
+
+// A clamping fixture that is part of the mesh (boundary condition with Elements = its block): only the
+// fixture's DG copies of the border nodes are held, so the beam's copies move and the edges on the border are
+// interior edges that can break. References: the definition of the option (docs/theory.md, "Conditions and
+// loads"); the border edges are where the shear force of a suddenly stopped beam is largest, so at 225 m/s with
+// an elastic shear force (docs/beam_blast.md: threshold sigma_c/(rho c_s') = 49 m/s) they break first.
+TEST(Fracture, FixtureBorderEdgesBreak) {
+  const auto dir = work_dir("fracture_fixture");
+  write_fixture_mesh(dir + "/fixture_mesh.exo");
+  write_deck(dir + "/fixture.xml", *fixture_deck(dir));
   solver::Simulation sim(dir + "/fixture.xml");
   sim.run();
   MPI_Barrier(MPI_COMM_WORLD);

@@ -18,9 +18,9 @@ using namespace shellfrac;
 using namespace shellfrac::test;
 
 namespace {
-std::vector<std::vector<double>> run(const std::string& dir, const std::string& name, const std::string& text,
-                                     std::vector<std::string>& header) {
-  write_file(dir + "/" + name + ".xml", text);
+std::vector<std::vector<double>> run(const std::string& dir, const std::string& name,
+                                     const Teuchos::ParameterList& deck, std::vector<std::string>& header) {
+  write_deck(dir + "/" + name + ".xml", deck);
   solver::Simulation sim(dir + "/" + name + ".xml");
   sim.run();
   MPI_Barrier(MPI_COMM_WORLD);
@@ -30,16 +30,16 @@ std::vector<std::vector<double>> run(const std::string& dir, const std::string& 
 
 TEST(Loads, PressureWorkBalancesEnergy) {
   const auto dir = work_dir("pressure");
-  const std::string body =
-      "<ParameterList name=\"Time Integration\"><Parameter name=\"End Time\" type=\"double\" value=\"0.02\"/>"
-      "<Parameter name=\"History Interval\" type=\"int\" value=\"50\"/></ParameterList>\n"
-      "<ParameterList name=\"Loads\"><ParameterList name=\"blast\"><Parameter name=\"Type\" type=\"string\" "
-      "value=\"Pressure\"/><Parameter name=\"Elements\" type=\"string\" value=\"all\"/>"
-      "<Parameter name=\"Function\" type=\"string\" value=\"Exponential\"/>"
-      "<Parameter name=\"Pressure\" type=\"double\" value=\"50\"/>"
-      "<Parameter name=\"Decay Time\" type=\"double\" value=\"0.005\"/></ParameterList></ParameterList>\n";
+  auto deck = base_deck({}, dir);
+  set_rectangle(*deck, 1.0, 1.0, 4, 4);
+  auto& time = deck->sublist("Time Integration");
+  time.set("End Time", 0.02), time.set("History Interval", 50);
+  auto& blast = deck->sublist("Loads").sublist("blast");
+  blast.set("Type", std::string("Pressure")), blast.set("Elements", std::string("all"));
+  blast.set("Function", std::string("Exponential")), blast.set("Pressure", 50.0), blast.set("Decay Time", 0.005);
+  set_probes(*deck, {"corners"});
   std::vector<std::string> h;
-  const auto rows = run(dir, "pressure", deck(rectangle_mesh(1.0, 1.0, 4, 4), body, dir, "{corners}"), h);
+  const auto rows = run(dir, "pressure", *deck, h);
   if (parallel::rank() != 0) return;
   const auto w = column(h, "external_work"), err = column(h, "energy_balance_error");
   double wmax = 0;
@@ -51,22 +51,19 @@ TEST(Loads, PressureWorkBalancesEnergy) {
 TEST(Constraints, PulledStripReactionAndEnergy) {
   const auto dir = work_dir("pulled");
   const double V = 1.0, E = 2.1e6, rho = 1.0, h = 0.1, b = 0.2;
-  const std::string body =
-      "<ParameterList name=\"Time Integration\"><Parameter name=\"End Time\" type=\"double\" value=\"1.2e-3\"/>"
-      "<Parameter name=\"History Interval\" type=\"int\" value=\"5\"/></ParameterList>\n"
-      "<ParameterList name=\"Boundary Conditions\">"
-      "<ParameterList name=\"left\"><Parameter name=\"Type\" type=\"string\" value=\"Prescribed Velocity\"/>"
-      "<Parameter name=\"Node Set\" type=\"string\" value=\"x_min\"/>"
-      "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{-1.0, 0.0, 0.0}\"/>"
-      "<Parameter name=\"Ramp Time\" type=\"double\" value=\"1e-4\"/></ParameterList>"
-      "<ParameterList name=\"right\"><Parameter name=\"Type\" type=\"string\" value=\"Prescribed Velocity\"/>"
-      "<Parameter name=\"Node Set\" type=\"string\" value=\"x_max\"/>"
-      "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{1.0, 0.0, 0.0}\"/>"
-      "<Parameter name=\"Ramp Time\" type=\"double\" value=\"1e-4\"/></ParameterList></ParameterList>\n";
-  std::vector<std::string> hd;
   ShellSection section;
   section.poisson = 0.0;  // no lateral contraction: the strip is a one-dimensional bar exactly
-  const auto rows = run(dir, "pulled", deck(rectangle_mesh(2.0, b, 40, 4), body, dir, "{x_max}", section), hd);
+  auto deck = base_deck(section, dir);
+  set_rectangle(*deck, 2.0, b, 40, 4);
+  auto& time = deck->sublist("Time Integration");
+  time.set("End Time", 1.2e-3), time.set("History Interval", 5);
+  auto& left = boundary_condition(*deck, "left", "Prescribed Velocity", "x_min");
+  left.set("Velocity", vec3(-1.0, 0.0, 0.0)), left.set("Ramp Time", 1e-4);
+  auto& right = boundary_condition(*deck, "right", "Prescribed Velocity", "x_max");
+  right.set("Velocity", vec3(1.0, 0.0, 0.0)), right.set("Ramp Time", 1e-4);
+  set_probes(*deck, {"x_max"});
+  std::vector<std::string> hd;
+  const auto rows = run(dir, "pulled", *deck, hd);
   if (parallel::rank() != 0) return;
   const auto rx = column(hd, "right_reaction_x"), t = column(hd, "time"), err = column(hd, "energy_balance_error");
   const auto wr = column(hd, "reaction_work");
@@ -94,22 +91,20 @@ TEST(Constraints, PulledStripReactionAndEnergy) {
 TEST(Constraints, PartlyPrescribedVelocityLeavesOtherComponentsFree) {
   const auto dir = work_dir("partly_prescribed");
   const double V = 1.0, tr = 2e-4, t_end = 1.5e-3;
-  auto body = [&](const std::string& components) {
-    return "<ParameterList name=\"Time Integration\"><Parameter name=\"End Time\" type=\"double\" value=\"" +
-           xml_double(t_end) + "\"/><Parameter name=\"History Interval\" type=\"int\" value=\"5\"/></ParameterList>\n"
-           "<ParameterList name=\"Boundary Conditions\">"
-           "<ParameterList name=\"root\"><Parameter name=\"Type\" type=\"string\" value=\"Clamped\"/>"
-           "<Parameter name=\"Node Set\" type=\"string\" value=\"x_min\"/></ParameterList>"
-           "<ParameterList name=\"lift\"><Parameter name=\"Type\" type=\"string\" value=\"Prescribed Velocity\"/>"
-           "<Parameter name=\"Node Set\" type=\"string\" value=\"x_max\"/>"
-           "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{0.0, 0.0, 1.0}\"/>"
-           "<Parameter name=\"Components\" type=\"string\" value=\"" + components + "\"/>"
-           "<Parameter name=\"Ramp Time\" type=\"double\" value=\"" + xml_double(tr) +
-           "\"/></ParameterList></ParameterList>\n";
+  const auto strip = [&](const std::string& components) {
+    auto deck = base_deck({}, dir);
+    set_rectangle(*deck, 2.0, 0.2, 20, 2);
+    auto& time = deck->sublist("Time Integration");
+    time.set("End Time", t_end), time.set("History Interval", 5);
+    boundary_condition(*deck, "root", "Clamped", "x_min");
+    auto& lift = boundary_condition(*deck, "lift", "Prescribed Velocity", "x_max");
+    lift.set("Velocity", vec3(0.0, 0.0, 1.0)), lift.set("Components", components), lift.set("Ramp Time", tr);
+    set_probes(*deck, {"x_max"});
+    return deck;
   };
   std::vector<std::string> hz, ha;
-  const auto rz = run(dir, "z_only", deck(rectangle_mesh(2.0, 0.2, 20, 2), body("z"), dir, "{x_max}"), hz);
-  const auto ra = run(dir, "all", deck(rectangle_mesh(2.0, 0.2, 20, 2), body("xyz"), dir, "{x_max}"), ha);
+  const auto rz = run(dir, "z_only", *strip("z"), hz);
+  const auto ra = run(dir, "all", *strip("xyz"), ha);
   if (parallel::rank() != 0) return;
   const auto& last = rz.back();
   const double t = last[column(hz, "time")], u_exact = V * (t - 0.5 * tr);
@@ -129,25 +124,21 @@ TEST(Constraints, PartlyPrescribedVelocityLeavesOtherComponentsFree) {
 
 TEST(Constraints, SymmetryPlaneHalfModelMatchesFullModel) {
   const auto dir = work_dir("symmetry");
-  const std::string time =
-      "<ParameterList name=\"Time Integration\"><Parameter name=\"End Time\" type=\"double\" value=\"0.2\"/>"
-      "<Parameter name=\"History Interval\" type=\"int\" value=\"10\"/></ParameterList>\n";
-  const std::string kick =
-      "<ParameterList name=\"Initial Conditions\"><ParameterList name=\"kick\">"
-      "<Parameter name=\"Elements\" type=\"string\" value=\"all\"/>"
-      "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{0.0, 0.0, 1.0}\"/></ParameterList></ParameterList>\n";
-  const std::string clamp =
-      "<ParameterList name=\"root\"><Parameter name=\"Type\" type=\"string\" value=\"Clamped\"/>"
-      "<Parameter name=\"Node Set\" type=\"string\" value=\"y_min\"/></ParameterList>";
-  const std::string full_bc = "<ParameterList name=\"Boundary Conditions\">" + clamp + "</ParameterList>\n";
-  const std::string half_bc = "<ParameterList name=\"Boundary Conditions\">" + clamp +
-                              "<ParameterList name=\"mirror\"><Parameter name=\"Type\" type=\"string\" "
-                              "value=\"Symmetry\"/><Parameter name=\"Node Set\" type=\"string\" value=\"x_max\"/>"
-                              "<Parameter name=\"Normal\" type=\"Array(double)\" value=\"{1.0, 0.0, 0.0}\"/>"
-                              "</ParameterList></ParameterList>\n";
+  // The clamped plate 1.0 x 1.5 (8 x 12 cells) or its half x <= 0.5 (4 x 12) with a mirror on x_max.
+  const auto plate = [&](bool half) {
+    auto deck = base_deck({}, dir);
+    set_rectangle(*deck, half ? 0.5 : 1.0, 1.5, half ? 4 : 8, 12);
+    auto& time = deck->sublist("Time Integration");
+    time.set("End Time", 0.2), time.set("History Interval", 10);
+    boundary_condition(*deck, "root", "Clamped", "y_min");
+    if (half) boundary_condition(*deck, "mirror", "Symmetry", "x_max").set("Normal", vec3(1.0, 0.0, 0.0));
+    initial_velocity(*deck, "kick", "all", vec3(0.0, 0.0, 1.0));
+    set_probes(*deck, {"y_max"});
+    return deck;
+  };
   std::vector<std::string> hf, hh;
-  const auto full = run(dir, "full", deck(rectangle_mesh(1.0, 1.5, 8, 12), time + full_bc + kick, dir), hf);
-  const auto half = run(dir, "half", deck(rectangle_mesh(0.5, 1.5, 4, 12), time + half_bc + kick, dir), hh);
+  const auto full = run(dir, "full", *plate(false), hf);
+  const auto half = run(dir, "half", *plate(true), hh);
   if (parallel::rank() != 0) return;
   const auto cf = upward_crossings(full, column(hf, "y_max_displ_z"));
   const auto ch = upward_crossings(half, column(hh, "y_max_displ_z"));

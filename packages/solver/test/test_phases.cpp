@@ -47,13 +47,6 @@ std::vector<char> node_set(const mesh::SerialMesh& mesh, const std::string& name
   return member;
 }
 
-Teuchos::ParameterList& condition(Teuchos::ParameterList& deck, const std::string& name, const std::string& type,
-                                  const std::string& node_set) {
-  auto& bc = deck.sublist("Boundary Conditions").sublist(name);
-  bc.set("Type", type), bc.set("Node Set", node_set);
-  return bc;
-}
-
 }  // namespace
 
 TEST(Phases, StartUpAccelerationIsGravityMinusDamping) {
@@ -80,9 +73,9 @@ TEST(Phases, StartUpAccelerationIsGravityMinusDamping) {
 TEST(Phases, ConstraintsHoldProjectAndPrescribe) {
   const double V = 0.1, ramp = 2e-4;
   auto deck = plate_deck();
-  condition(*deck, "clamp", "Clamped", "y_min");
-  condition(*deck, "mirror", "Symmetry", "x_min").set("Normal", vec3(1, 0, 0));
-  auto& lift = condition(*deck, "lift", "Prescribed Velocity", "x_max");
+  boundary_condition(*deck, "clamp", "Clamped", "y_min");
+  boundary_condition(*deck, "mirror", "Symmetry", "x_min").set("Normal", vec3(1, 0, 0));
+  auto& lift = boundary_condition(*deck, "lift", "Prescribed Velocity", "x_max");
   lift.set("Velocity", vec3(0, 0, V)), lift.set("Components", std::string("z")), lift.set("Ramp Time", ramp);
   deck->sublist("Initial Conditions").sublist("kick").set("Velocity", vec3(0.3, 0.2, 1.0));
   auto& gravity = deck->sublist("Loads").sublist("gravity");
@@ -136,8 +129,8 @@ TEST(Phases, ConstraintsHoldProjectAndPrescribe) {
 TEST(Phases, TwoConditionsOnOneNodeSetShareItsReaction) {
   const double gy = -3.0, gz = -9.81;
   auto deck = plate_deck();
-  condition(*deck, "floor", "Symmetry", "y_min").set("Normal", vec3(0, 0, 1));
-  condition(*deck, "wall", "Symmetry", "y_min").set("Normal", vec3(0, 1, 0));
+  boundary_condition(*deck, "floor", "Symmetry", "y_min").set("Normal", vec3(0, 0, 1));
+  boundary_condition(*deck, "wall", "Symmetry", "y_min").set("Normal", vec3(0, 1, 0));
   auto& gravity = deck->sublist("Loads").sublist("gravity");
   gravity.set("Type", std::string("Gravity")), gravity.set("Acceleration", vec3(0, gy, gz));
   const auto model = build(deck);
@@ -162,7 +155,7 @@ TEST(Phases, TwoConditionsOnOneNodeSetShareItsReaction) {
   EXPECT_NEAR(r[8], 0.0, tol);
   // A clamp of the same set carries the same total.
   auto clamped = plate_deck();
-  condition(*clamped, "clamp", "Clamped", "y_min");
+  boundary_condition(*clamped, "clamp", "Clamped", "y_min");
   auto& g2 = clamped->sublist("Loads").sublist("gravity");
   g2.set("Type", std::string("Gravity")), g2.set("Acceleration", vec3(0, gy, gz));
   const auto rc = build(clamped).dynamics->reactions();

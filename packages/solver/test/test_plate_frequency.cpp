@@ -204,6 +204,27 @@ struct Measured {
   long steps = 0;
 };
 
+/// The plate's deck for `periods` periods of f_ref on the mesh file plate.exo: the four edges simply supported
+/// (hard: also a symmetry plane with the edge tangent as normal), every element kicked at v_z = 1; probe "all".
+Teuchos::RCP<Teuchos::ParameterList> plate_deck(const std::string& dir, double periods, double f_ref, bool hard) {
+  auto deck = base_deck({h, rho, E, nu}, dir);
+  set_mesh_file(*deck, "plate.exo");
+  auto& time = deck->sublist("Time Integration");
+  time.set("End Time", periods / f_ref), time.set("History Interval", 5);
+  for (const char* set : {"x_min", "x_max", "y_min", "y_max"})
+    boundary_condition(*deck, std::string("support ") + set, "Simply Supported", set);
+  // Hard support: in addition, a symmetry plane whose normal is the edge TANGENT keeps the director out of
+  // that direction (t . tau = 0: no rotation about the edge normal, psi_s = 0; theory.md §10.1, the table's
+  // "symmetry plane" row). Its position part (v . tau = 0) is already implied by the support.
+  if (hard)
+    for (const auto& [set, tangent] : {std::pair{"x_min", vec3(0.0, 1.0, 0.0)}, std::pair{"x_max", vec3(0.0, 1.0, 0.0)},
+                                       std::pair{"y_min", vec3(1.0, 0.0, 0.0)}, std::pair{"y_max", vec3(1.0, 0.0, 0.0)}})
+      boundary_condition(*deck, std::string("hard ") + set, "Symmetry", set).set("Normal", tangent);
+  initial_velocity(*deck, "kick", "all", vec3(0.0, 0.0, 1.0));
+  set_probes(*deck, {"all"});
+  return deck;
+}
+
 /// Runs the plate on an n x n Alternating mesh for `periods` periods of f_ref; returns the frequency of the
 /// mean deflection of all vertices (spectral peak, and upward zero crossings for comparison).
 Measured run_plate(int n, double periods, double f_ref, bool hard = false) {
@@ -214,34 +235,7 @@ Measured run_plate(int n, double periods, double f_ref, bool hard = false) {
   mesh.node_sets.push_back(all);
   if (parallel::rank() == 0) meshio::write_exodus_mesh(mesh, dir + "/plate.exo");
   MPI_Barrier(MPI_COMM_WORLD);
-
-  std::string body =
-      "<ParameterList name=\"Time Integration\"><Parameter name=\"End Time\" type=\"double\" value=\"" +
-      xml_double(periods / f_ref) +
-      "\"/><Parameter name=\"History Interval\" type=\"int\" value=\"5\"/></ParameterList>\n"
-      "<ParameterList name=\"Boundary Conditions\">";
-  for (const char* set : {"x_min", "x_max", "y_min", "y_max"})
-    body += std::string("<ParameterList name=\"support ") + set +
-            "\"><Parameter name=\"Type\" type=\"string\" value=\"Simply Supported\"/>"
-            "<Parameter name=\"Node Set\" type=\"string\" value=\"" + set + "\"/></ParameterList>";
-  // Hard support: in addition, a symmetry plane whose normal is the edge TANGENT keeps the director out of
-  // that direction (t . tau = 0: no rotation about the edge normal, psi_s = 0; theory.md §10.1, the table's
-  // "symmetry plane" row). Its position part (v . tau = 0) is already implied by the support.
-  if (hard)
-    for (const auto& [set, tangent] : {std::pair{"x_min", "{0.0, 1.0, 0.0}"}, std::pair{"x_max", "{0.0, 1.0, 0.0}"},
-                                       std::pair{"y_min", "{1.0, 0.0, 0.0}"}, std::pair{"y_max", "{1.0, 0.0, 0.0}"}})
-      body += std::string("<ParameterList name=\"hard ") + set +
-              "\"><Parameter name=\"Type\" type=\"string\" value=\"Symmetry\"/>"
-              "<Parameter name=\"Node Set\" type=\"string\" value=\"" + set + "\"/>"
-              "<Parameter name=\"Normal\" type=\"Array(double)\" value=\"" + tangent + "\"/></ParameterList>";
-  body +=
-      "</ParameterList>\n<ParameterList name=\"Initial Conditions\"><ParameterList name=\"kick\">"
-      "<Parameter name=\"Elements\" type=\"string\" value=\"all\"/>"
-      "<Parameter name=\"Velocity\" type=\"Array(double)\" value=\"{0.0, 0.0, 1.0}\"/></ParameterList></ParameterList>\n";
-  const std::string mesh_xml =
-      "<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"File\"/>"
-      "<Parameter name=\"File\" type=\"string\" value=\"plate.exo\"/></ParameterList>\n";
-  write_file(dir + "/plate.xml", deck(mesh_xml, body, dir, "{all}", {h, rho, E, nu}));
+  write_deck(dir + "/plate.xml", *plate_deck(dir, periods, f_ref, hard));
   solver::Simulation sim(dir + "/plate.xml");
   const auto summary = sim.run();
   Measured m;

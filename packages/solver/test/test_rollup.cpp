@@ -25,10 +25,12 @@ namespace {
 
 void check_rollup(double lambda) {
   const auto dir = work_dir("rollup_" + std::to_string(int(lambda * 100)));
-  std::string text = example_deck("rollup.xml", dir);
+  const auto deck = example_deck("rollup.xml", dir);
   const double L = 12, EI = 100, theta = 2 * M_PI * lambda;
-  replace(text, "value=\"3.141592653589793\"", "value=\"" + xml_double(theta) + "\"");
-  write_file(dir + "/rollup.xml", text);
+  auto& tip = deck->sublist("Boundary Conditions").sublist("tip");
+  ASSERT_TRUE(tip.isType<double>("Angle")) << "xml/rollup.xml: the end rotation Boundary Conditions->tip->Angle";
+  tip.set("Angle", theta);
+  write_deck(dir + "/rollup.xml", *deck);
   solver::Simulation sim(dir + "/rollup.xml");
   sim.run();
   std::vector<std::string> header;

@@ -21,25 +21,28 @@
 
 using namespace shellfrac;
 using shellfrac::test::work_dir;
-using shellfrac::test::write_file;
+using shellfrac::test::write_deck;
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string deck(const std::string& mesh_xml, const std::string& block, const std::string& extra = "") {
-  return "<ParameterList name=\"shellfrac\">\n" + mesh_xml +
-         "<ParameterList name=\"Blocks\"><ParameterList name=\"" + block +
-         "\"><Parameter name=\"Thickness\" type=\"double\" value=\"0.125\"/>"
-         "<Parameter name=\"Material\" type=\"string\" value=\"al\"/></ParameterList></ParameterList>\n"
-         "<ParameterList name=\"Materials\"><ParameterList name=\"al\">"
-         "<Parameter name=\"Density\" type=\"double\" value=\"2.5e-4\"/>"
-         "<Parameter name=\"Young's Modulus\" type=\"double\" value=\"10.5e6\"/>"
-         "<Parameter name=\"Poisson's Ratio\" type=\"double\" value=\"0.33\"/></ParameterList></ParameterList>\n" +
-         extra + "</ParameterList>\n";
+/// A deck without a mesh: the block `block` of the aluminium material "al", results written to `dir`.
+Teuchos::RCP<Teuchos::ParameterList> aluminium_deck(const std::string& block, const std::string& dir) {
+  auto deck = Teuchos::rcp(new Teuchos::ParameterList("shellfrac"));
+  auto& b = deck->sublist("Blocks").sublist(block);
+  b.set("Thickness", 0.125), b.set("Material", std::string("al"));
+  auto& al = deck->sublist("Materials").sublist("al");
+  al.set("Density", 2.5e-4), al.set("Young's Modulus", 10.5e6), al.set("Poisson's Ratio", 0.33);
+  deck->sublist("Output").set("Directory", dir);
+  return deck;
 }
 
-const std::string panel_mesh = test::cylindrical_panel_mesh(2.9375, 12.56, 120, 16, 6);
-
+/// The aluminium deck on the generated cylindrical panel R = 2.9375, L = 12.56, 120 degrees, 16 x 6 cells.
+Teuchos::RCP<Teuchos::ParameterList> panel_deck(const std::string& block, const std::string& dir) {
+  auto deck = aluminium_deck(block, dir);
+  test::set_cylindrical_panel(*deck, 2.9375, 12.56, 120, 16, 6);
+  return deck;
+}
 
 /// Runs the deck and checks the written results against `expected` (the P2 serial mesh).
 void run_and_check(const std::string& deck_path, const mesh::SerialMesh& expected) {
@@ -75,9 +78,7 @@ void run_and_check(const std::string& deck_path, const mesh::SerialMesh& expecte
 
 TEST(Run, GeneratedCylindricalPanel) {
   const auto dir = work_dir("panel");
-  write_file(dir + "/panel.xml", deck(panel_mesh, "shell",
-                                      "<ParameterList name=\"Output\"><Parameter name=\"Directory\" type=\"string\" "
-                                      "value=\"" + dir + "\"/></ParameterList>"));
+  write_deck(dir + "/panel.xml", *panel_deck("shell", dir));
   auto expected = mesh::make_cylindrical_panel(2.9375, 12.56, 120 * M_PI / 180, 16, 6);
   mesh::promote_to_p2(expected);
   run_and_check(dir + "/panel.xml", expected);
@@ -92,12 +93,9 @@ TEST(Run, GmshCurvedSurface) {
     ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
   }
   MPI_Barrier(MPI_COMM_WORLD);
-  write_file(dir + "/curved.xml",
-             deck("<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"File\"/>"
-                  "<Parameter name=\"File\" type=\"string\" value=\"panel.msh\"/></ParameterList>\n",
-                  "skin",
-                  "<ParameterList name=\"Output\"><Parameter name=\"Directory\" type=\"string\" value=\"" + dir +
-                      "\"/></ParameterList>"));
+  const auto curved = aluminium_deck("skin", dir);
+  test::set_mesh_file(*curved, "panel.msh");
+  write_deck(dir + "/curved.xml", *curved);
   const auto expected = meshio::read_mesh_file(msh);
   EXPECT_EQ(expected.nodes_per_element, 6);  // Gmsh order 2: no promotion, the file's own mid-side nodes
   run_and_check(dir + "/curved.xml", expected);
@@ -106,12 +104,12 @@ TEST(Run, GmshCurvedSurface) {
 namespace {
 /// Expects Simulation(deck) to throw an InputError containing every phrase, and the directory to stay empty
 /// but for the deck.
-void expect_rejected(const std::string& dir, const std::string& text, const std::vector<std::string>& phrases) {
-  write_file(dir + "/bad.xml", text);
+void expect_rejected(const std::string& dir, const Teuchos::ParameterList& deck, const std::vector<std::string>& phrases) {
+  write_deck(dir + "/bad.xml", deck);
   try {
     solver::Simulation sim(dir + "/bad.xml");
     sim.run();
-    ADD_FAILURE() << "deck accepted:\n" << text;
+    ADD_FAILURE() << "deck accepted:\n" << deck;
   } catch (const InputError& e) {
     for (const auto& p : phrases) EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what();
   }
@@ -124,38 +122,32 @@ void expect_rejected(const std::string& dir, const std::string& text, const std:
 
 TEST(Run, BadDecksAreRejectedBeforeAnyOutput) {
   const auto dir = work_dir("bad");
-  const std::string out = "<ParameterList name=\"Output\"><Parameter name=\"Directory\" type=\"string\" value=\"" + dir +
-                          "\"/></ParameterList>";
-  std::string misspelled = deck(panel_mesh, "shell", out);
-  misspelled.replace(misspelled.find("\"Thickness\""), 11, "\"Thicknes\"");
-  expect_rejected(dir, misspelled, {"bad.xml: unknown parameter 'Thicknes' in 'shellfrac->Blocks->shell'",
-                                    "Did you mean 'Thickness'?", "'Material'"});
-  std::string negative = deck(panel_mesh, "shell", out);
-  negative.replace(negative.find("0.125"), 5, "-0.125");
-  expect_rejected(dir, negative, {"invalid value '-0.125' for parameter 'shellfrac->Blocks->shell->Thickness'", "> 0"});
-  expect_rejected(dir, deck(panel_mesh, "skin", out), {"mesh block 'shell'", "has no entry in the Blocks sublist"});
-  expect_rejected(dir,
-                  deck("<ParameterList name=\"Mesh\"><Parameter name=\"Source\" type=\"string\" value=\"File\"/>"
-                       "<Parameter name=\"File\" type=\"string\" value=\"missing.exo\"/></ParameterList>",
-                       "shell", out),
-                  {"missing.exo"});
-  std::string unknown_material = deck(panel_mesh, "shell", out);
-  unknown_material.replace(unknown_material.find("value=\"al\""), 10, "value=\"steel\"");
-  expect_rejected(dir, unknown_material, {"'Blocks->shell->Material' is 'steel', which is not in Materials", "'al'"});
-  expect_rejected(dir,
-                  deck(panel_mesh, "shell",
-                       out + "<ParameterList name=\"Partitioning\"><Parameter name=\"Method\" type=\"string\" "
-                             "value=\"ParMETIS\"/></ParameterList>"),
-                  {"'shellfrac->Partitioning->Method'", "'METIS' 'Zoltan2'"});
-  expect_rejected(dir, "<ParameterList name=\"shellfrac\"><ParameterList name=\"Mesh\"/></ParameterList>",
-                  {"the deck needs a 'Blocks' sublist"});
+  const auto misspelled = panel_deck("shell", dir);
+  misspelled->sublist("Blocks").sublist("shell").remove("Thickness");
+  misspelled->sublist("Blocks").sublist("shell").set("Thicknes", 0.125);
+  expect_rejected(dir, *misspelled, {"bad.xml: unknown parameter 'Thicknes' in 'shellfrac->Blocks->shell'",
+                                     "Did you mean 'Thickness'?", "'Material'"});
+  const auto negative = panel_deck("shell", dir);
+  negative->sublist("Blocks").sublist("shell").set("Thickness", -0.125);
+  expect_rejected(dir, *negative, {"invalid value '-0.125' for parameter 'shellfrac->Blocks->shell->Thickness'", "> 0"});
+  expect_rejected(dir, *panel_deck("skin", dir), {"mesh block 'shell'", "has no entry in the Blocks sublist"});
+  const auto missing_mesh = aluminium_deck("shell", dir);
+  test::set_mesh_file(*missing_mesh, "missing.exo");
+  expect_rejected(dir, *missing_mesh, {"missing.exo"});
+  const auto unknown_material = panel_deck("shell", dir);
+  unknown_material->sublist("Blocks").sublist("shell").set("Material", std::string("steel"));
+  expect_rejected(dir, *unknown_material, {"'Blocks->shell->Material' is 'steel', which is not in Materials", "'al'"});
+  const auto bad_partitioner = panel_deck("shell", dir);
+  bad_partitioner->sublist("Partitioning").set("Method", std::string("ParMETIS"));
+  expect_rejected(dir, *bad_partitioner, {"'shellfrac->Partitioning->Method'", "'METIS' 'Zoltan2'"});
+  Teuchos::ParameterList mesh_only("shellfrac");
+  mesh_only.sublist("Mesh");
+  expect_rejected(dir, mesh_only, {"the deck needs a 'Blocks' sublist"});
   // Plasticity parameters: the model needs a yield stress; an elastic material must not carry one.
-  std::string no_yield = deck(panel_mesh, "shell", out);
-  no_yield.replace(no_yield.find("<Parameter name=\"Density\""), 0,
-                   "<Parameter name=\"Model\" type=\"string\" value=\"Resultant Plasticity\"/>");
-  expect_rejected(dir, no_yield, {"'shellfrac->Materials->al' has Model = Resultant Plasticity but no positive 'Yield Stress'"});
-  std::string elastic_yield = deck(panel_mesh, "shell", out);
-  elastic_yield.replace(elastic_yield.find("<Parameter name=\"Density\""), 0,
-                        "<Parameter name=\"Yield Stress\" type=\"double\" value=\"44e3\"/>");
-  expect_rejected(dir, elastic_yield, {"gives a yield stress, hardening modulus or shear yield, which only Model = Resultant Plasticity uses"});
+  const auto no_yield = panel_deck("shell", dir);
+  no_yield->sublist("Materials").sublist("al").set("Model", std::string("Resultant Plasticity"));
+  expect_rejected(dir, *no_yield, {"'shellfrac->Materials->al' has Model = Resultant Plasticity but no positive 'Yield Stress'"});
+  const auto elastic_yield = panel_deck("shell", dir);
+  elastic_yield->sublist("Materials").sublist("al").set("Yield Stress", 44e3);
+  expect_rejected(dir, *elastic_yield, {"gives a yield stress, hardening modulus or shear yield, which only Model = Resultant Plasticity uses"});
 }
