@@ -158,7 +158,6 @@ DistributedMesh::DistributedMesh(const mesh::SerialMesh& mesh, const mesh::EdgeT
   maps_->overlap = Teuchos::rcp(new map_type(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
                                              view_of(gids, 0, gids.size()), tpetra_go(0), tcomm));
   maps_->importer = Teuchos::rcp(new import_type(maps_->owned, maps_->overlap));
-  maps_->exporter = Teuchos::rcp(new export_type(maps_->overlap, maps_->owned));
   const std::size_t nghost = gids.size() - static_cast<std::size_t>(num_owned_);
   maps_->ghosts = Teuchos::rcp(new map_type(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
                                             view_of(gids, static_cast<std::size_t>(num_owned_), nghost), tpetra_go(0),

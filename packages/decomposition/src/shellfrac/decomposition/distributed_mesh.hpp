@@ -10,7 +10,7 @@
 ///  * interfaces (paper's map P): every interface with at least one owned side is listed with the local
 ///    overlap ids of both sides; it is *owned* by exactly one rank, the lower of the two owners' ranks;
 ///  * boundary edges of owned elements with their side-set membership;
-///  * Tpetra maps and the Import (owned -> overlap) / Export-ADD (overlap -> owned) of element rows, built
+///  * Tpetra maps and the Imports (owned -> overlap, owned -> ghosts) of element rows, built
 ///    once (element_maps.hpp; kept out of this header because Tpetra headers are slow to compile).
 /// Works on a rank that owns no element. Construction is collective.
 #include <mpi.h>
@@ -93,7 +93,7 @@ class DistributedMesh {
   /// Boundary edges of owned elements.
   const std::vector<LocalBoundaryEdge>& boundary_edges() const { return boundary_; }
 
-  /// Tpetra maps, Import and Export (include shellfrac/decomposition/element_maps.hpp to use).
+  /// Tpetra maps and Imports (include shellfrac/decomposition/element_maps.hpp to use).
   const ElementMaps& maps() const { return *maps_; }
 
  private:

@@ -6,7 +6,6 @@
 /// Data flow every step (docs/parallel.md): owned -> Import(INSERT) -> ghosts -> kernels. The per-step
 /// transfers use `ghost_importer`, so that only the rows other ranks hold as ghosts (`send_rows`) are packed and
 /// only the ghost rows are received: the owned rows are never copied (at np = 1 nothing moves at all).
-#include <Tpetra_Export.hpp>
 #include <Tpetra_Import.hpp>
 #include <Tpetra_Map.hpp>
 #include <Tpetra_MultiVector.hpp>
@@ -22,7 +21,6 @@ using tpetra_lo = map_type::local_ordinal_type;
 using tpetra_go = map_type::global_ordinal_type;
 using node_type = map_type::node_type;
 using import_type = Tpetra::Import<tpetra_lo, tpetra_go, node_type>;
-using export_type = Tpetra::Export<tpetra_lo, tpetra_go, node_type>;
 using multivector_type = Tpetra::MultiVector<double, tpetra_lo, tpetra_go, node_type>;
 using execution_space = multivector_type::execution_space;
 static_assert(std::is_same_v<tpetra_go, long long> || sizeof(tpetra_go) == sizeof(GlobalId),
@@ -33,7 +31,6 @@ struct ElementMaps {
   Teuchos::RCP<const map_type> owned;    ///< one-to-one: the elements this rank owns
   Teuchos::RCP<const map_type> overlap;  ///< owned then ghosts
   Teuchos::RCP<const import_type> importer;  ///< owned -> overlap (ghost values from their owners)
-  Teuchos::RCP<const export_type> exporter;  ///< overlap -> owned (ADD ghost contributions to owners)
   Teuchos::RCP<const map_type> ghosts;       ///< the ghosts only: overlap rows num_owned.. in the same order
   Teuchos::RCP<const import_type> ghost_importer;  ///< owned -> ghosts (remote rows only, no same/permute rows)
   std::vector<LocalId> send_rows;  ///< owned rows that another rank holds as a ghost (sorted, unique)
