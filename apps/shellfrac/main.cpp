@@ -1,10 +1,12 @@
 // shellfrac: DG / cohesive-zone simulation of shear-flexible shells (Talamini & Radovitzky, CMAME 2017).
 //   shellfrac DECK.xml                     run the deck
 //   shellfrac --check DECK.xml             validate the deck and build the mesh/partition; write nothing
+//   shellfrac --quiet DECK.xml             run without progress lines
 //   shellfrac --print-valid-parameters [F] documented XML skeleton of every parameter (stdout or file F)
 //   shellfrac --help | --version
 // Exit codes: 0 success, 1 input error (message names the file and parameter), 2 usage error,
-// 3 internal error (all ranks aborted).
+// 3 internal error (all ranks aborted), 4 stopped by SIGTERM after a checkpoint, 5 Static Relaxation not
+// reached by End Time (results written).
 #include <mpi.h>
 
 #include <Tpetra_Core.hpp>
@@ -28,6 +30,7 @@ const char* usage =
     "options:\n"
     "  --check                          validate the deck, build the mesh and partition, write nothing\n"
     "  --restart FILE                   continue from the checkpoint FILE (overrides Checkpoint->Restart From)\n"
+    "  --quiet                          no progress lines during the run (Output->Progress Interval)\n"
     "  --print-valid-parameters [FILE]  write a documented XML deck with every parameter and its default\n"
     "  --help                           this text\n"
     "  --version                        version\n"
@@ -38,12 +41,13 @@ const char* usage =
     "Input reference: docs/input_reference.xml (the output of --print-valid-parameters).\n"
     "Signals: SIGUSR1 writes a checkpoint and continues; SIGTERM writes a checkpoint and the last results, then\n"
     "stops with exit code 4 (restart with --restart). Exit codes: 0 done, 1 input error, 2 usage error,\n"
-    "3 internal error or numerical blow-up, 4 stopped by SIGTERM after a checkpoint.\n";
+    "3 internal error or numerical blow-up, 4 stopped by SIGTERM after a checkpoint, 5 static equilibrium\n"
+    "(Static Relaxation) not reached by End Time.\n";
 
 int run(int argc, char** argv) {
   const bool root = shellfrac::parallel::rank() == 0;
   std::vector<std::string> args(argv + 1, argv + argc);
-  bool check = false;
+  bool check = false, quiet = false;
   std::string deck, restart;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
@@ -69,6 +73,8 @@ int run(int argc, char** argv) {
       return 0;
     } else if (a == "--check") {
       check = true;
+    } else if (a == "--quiet") {
+      quiet = true;
     } else if (a == "--restart") {
       if (i + 1 >= args.size()) {
         if (root) std::cerr << "shellfrac: error: --restart needs a checkpoint file\n\n" << usage;
@@ -90,6 +96,7 @@ int run(int argc, char** argv) {
     return 2;
   }
   shellfrac::solver::Simulation sim(deck, MPI_COMM_WORLD, restart);
+  if (quiet) sim.set_quiet();
   const auto& s = sim.summary();
   if (root) {
     std::cout << "shellfrac 0.1.0: " << deck << " on " << shellfrac::parallel::size() << " rank(s)\n"
@@ -99,6 +106,9 @@ int run(int argc, char** argv) {
               << "  partition: " << s.min_owned << ".." << s.max_owned << " elements and " << s.min_ghosts << ".."
               << s.max_ghosts << " ghosts per rank\n"
               << "  time step: " << s.dt << " (stable estimate " << s.stable_dt << ", docs/theory.md §8)\n";
+    for (const auto& r : s.regions)
+      std::cout << "  region '" << r.name << "': " << r.elements << " elements, " << r.nodes << " nodes, " << r.edges
+                << " edges\n";
   }
   if (check) {
     if (root) std::cout << "  deck and mesh are valid (--check: nothing written)\n";
@@ -112,8 +122,15 @@ int run(int argc, char** argv) {
                 << shellfrac::parallel::size() << " rank(s))\n";
     for (const auto& f : out.files) std::cout << "  wrote " << f << "\n";
     if (out.stopped_by_signal) std::cout << "  stopped by SIGTERM at step " << sim.summary().steps << "; continue with --restart\n";
+    if (out.relaxed)
+      std::cout << "  static equilibrium reached after " << out.steps << " steps: relative residual "
+                << out.residual << "\n";
+    else if (out.static_relaxation && !out.stopped_by_signal)
+      std::cerr << "shellfrac: warning: the static equilibrium was not reached by End Time (relative residual "
+                << out.residual << " above 'Relaxation Tolerance'); the results are written; exit code 5\n";
   }
-  return out.stopped_by_signal ? 4 : 0;
+  if (out.stopped_by_signal) return 4;
+  return out.static_relaxation && !out.relaxed ? 5 : 0;
 }
 
 }  // namespace

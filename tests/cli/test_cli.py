@@ -113,6 +113,23 @@ class Shellfrac(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertEqual(sorted(os.listdir(self.dir)), ["run.exo", "run.xml", "run_history.csv"])
 
+    def test_progress_lines_with_an_eta_and_quiet(self):
+        # Progress Interval 1e-9 s: a line after every step, on rank 0 only; the plan comes first.
+        deck = self.deck("progress.xml", ('<ParameterList name="Output">',
+                                          '<ParameterList name="Output">'
+                                          '<Parameter name="Progress Interval" type="double" value="1e-9"/>'))
+        r = run([SHELLFRAC, deck], cwd=self.dir, np=2)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertRegex(r.stdout, r"planned: \d+ steps to t = [0-9.e+-]+, results about [0-9.]+ [KMG]?i?B")
+        lines = [l for l in r.stdout.splitlines() if l.strip().startswith("step ")]
+        self.assertGreater(len(lines), 5, r.stdout)
+        self.assertRegex(lines[-1], r"100\.0 %.*steps/s +elapsed \d+:\d\d:\d\d +ETA 0:00:00 +balance error [0-9.e+-]+$")
+        steps = [int(l.split()[1]) for l in lines]
+        self.assertEqual(steps, sorted(set(steps)), "one line per step, printed once (rank 0)")
+        r = run([SHELLFRAC, "--quiet", deck], cwd=self.dir)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertNotIn("ETA", r.stdout)
+
     def test_sigterm_writes_a_checkpoint_and_the_run_restarts_from_it(self):
         # Issue #6: SIGTERM (a batch system's warning) leaves a readable checkpoint and Exodus file and exit
         # code 4; --restart continues from it.

@@ -78,6 +78,10 @@ struct DgElementRef {
   ShellReference ref[num_area_points];   ///< reference strain offsets gam0, rho0
   DgEdgeRef edge[3];
   double area;                           ///< |E| = sum_q w_q j0_q
+  /// Membrane strains and forces are used through their P1 L2 projection on the element (theory.md §5.4;
+  /// false: at the area points as they are). P[q][p]: (Pi f)(xi_q) = sum_p P[q][p] f(xi_p).
+  bool project_membrane;
+  double P[num_area_points][num_area_points];
 };
 
 namespace detail {
@@ -101,7 +105,8 @@ KOKKOS_INLINE_FUNCTION void inverse33(const double A[3][3], double B[3][3]) {
 /// nbr_same_direction[k]: the neighbour across edge k traverses the edge in the same direction (false for
 /// consistently oriented neighbours; irrelevant for edges without a neighbour).
 KOKKOS_INLINE_FUNCTION void build_dg_element_ref(const double X[6][3], const double T0[3][3],
-                                                 const bool nbr_same_direction[3], DgElementRef& R) {
+                                                 const bool nbr_same_direction[3], DgElementRef& R,
+                                                 bool project_membrane = false) {
   double L[3], dL[3][2];
   p1_shape(0, 0, L, dL);
   for (int a = 0; a < 3; ++a) R.dL[a][0] = dL[a][0], R.dL[a][1] = dL[a][1];
@@ -139,6 +144,14 @@ KOKKOS_INLINE_FUNCTION void build_dg_element_ref(const double X[6][3], const dou
   }
   double Minv[3][3];
   detail::inverse33(Mpsi, Minv);
+  R.project_membrane = project_membrane;
+  for (int q = 0; q < num_area_points; ++q)
+    for (int p = 0; p < num_area_points; ++p) {
+      double v = 0;
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) v += R.L[q][a] * Minv[a][b] * R.L[p][b];
+      R.P[q][p] = v * R.wj0[p];
+    }
   // Edges: arc-length weights, outward co-normals and lifting weights (theory.md §1.4, §5.2).
   for (int k = 0; k < 3; ++k) {
     const int vi = edge_node(k, 0), vj = edge_node(k, 1);
@@ -227,6 +240,28 @@ KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const double x[
   }
 }
 
+/// f[q][c] <- (Pi f)(xi_q): the P1 L2 projection on the element of point values f[q][0..n-1].
+template <int n>
+KOKKOS_INLINE_FUNCTION void project_p1(const DgElementRef& R, double f[num_area_points][n]) {
+  double g[num_area_points][n];
+  for (int q = 0; q < num_area_points; ++q)
+    for (int c = 0; c < n; ++c) {
+      g[q][c] = 0;
+      for (int p = 0; p < num_area_points; ++p) g[q][c] += R.P[q][p] * f[p][c];
+    }
+  for (int q = 0; q < num_area_points; ++q)
+    for (int c = 0; c < n; ++c) f[q][c] = g[q][c];
+}
+
+/// Strains at the area points from the DG kinematics (theory.md §2), with the membrane strains projected when
+/// the element projects them (theory.md §5.4).
+KOKKOS_INLINE_FUNCTION void dg_strains(const DgElementRef& R, const ShellKinematics kin[num_area_points],
+                                       double eps[num_area_points][3], double gam[num_area_points][2],
+                                       double rho[num_area_points][3]) {
+  for (int q = 0; q < num_area_points; ++q) compute_strains(kin[q], R.ref[q], eps[q], gam[q], rho[q]);
+  if (R.project_membrane) project_p1<3>(R, eps);
+}
+
 /// The traction on an element across each of its edges at the edge points (theory.md §9.5 step 1), per unit
 /// reference length, from the P1 L2 projections of its resultants: at[k][g][0..2] = sum_alpha (Pi n^alpha)(xi_g)
 /// nu_{E,alpha} (the force that the material beyond edge k exerts on E), at[k][g][3..5] the same for m^alpha,
@@ -257,14 +292,16 @@ KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const dou
   double Pix[2][3][3] = {};  // [alpha][component][psi]: sum_q w j0 n^alpha (x) psi
   double Pit[2][3] = {};     // [alpha][component]:      sum_q w j0 m^alpha
   double Pim[2][3][3] = {};  // [alpha][component][psi]: sum_q w j0 m^alpha (x) psi (only for edge tractions)
+  double eps[num_area_points][3], gam[num_area_points][2], rho[num_area_points][3];
+  dg_strains(R, kins, eps, gam, rho);
+  double N[num_area_points][3], Q[num_area_points][2], M[num_area_points][3];
   double energy = 0;
+  for (int q = 0; q < num_area_points; ++q) energy += R.wj0[q] * law(q, eps[q], gam[q], rho[q], N[q], Q[q], M[q]);
+  if (R.project_membrane) project_p1<3>(R, N);  // the gradient of the energy of the projected strains
   for (int q = 0; q < num_area_points; ++q) {
     const ShellKinematics& kin = kins[q];
-    double eps[3], gam[2], rho[3], N[3], Q[2], M[3];
-    compute_strains(kin, R.ref[q], eps, gam, rho);
-    energy += R.wj0[q] * law(q, eps, gam, rho, N, Q, M);
     double n[2][3], m[2][3], l[3];
-    stress_power_vectors(kin, N, Q, M, n, m, l);
+    stress_power_vectors(kin, N[q], Q[q], M[q], n, m, l);
     const double w = R.wj0[q];
     for (int al = 0; al < 2; ++al)
       for (int c = 0; c < 3; ++c) {

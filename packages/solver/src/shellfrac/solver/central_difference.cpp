@@ -1,9 +1,11 @@
 #include "shellfrac/solver/central_difference.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "shellfrac/core/error.hpp"
+#include "shellfrac/core/exact_sum.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/disc/director.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
@@ -17,14 +19,16 @@ namespace shellfrac::solver {
 
 CentralDifference::CentralDifference(ShellModel& model, Constraints& constraints, const Loads& loads,
                                      ForceAssembly& assembly, Fracture& fracture, PhaseTimes& times,
-                                     double mass_damping)
+                                     double mass_damping, Relaxation relaxation)
     : model_(model),
       constraints_(constraints),
       loads_(loads),
       assembly_(assembly),
       fracture_(fracture),
       times_(times),
-      alpha_(mass_damping) {
+      alpha_(mass_damping),
+      relaxation_(relaxation),
+      residual_(std::numeric_limits<double>::quiet_NaN()) {
   director_rate_predicted_.assign(model.owned);
 }
 
@@ -32,7 +36,7 @@ void CentralDifference::start(ShellState& s) {
   assembly_.exchange_state(s);
   assembly_.compute_forces(s, fracture_.cohesive_params());
   commit_plasticity(s);
-  loads_.external_forces(s.time, s.x, s.external_force);
+  loads_.external_forces(s.time, s, s.external_force, s.external_director_force);
   for (LocalId le = 0; le < model_.owned; ++le) accelerate(s, le, s.time, 0.0, s.director_rate);
 }
 
@@ -52,18 +56,98 @@ void CentralDifference::step(ShellState& s, double dt) {
     ScopedTimer nucleation(times_.nucleation);
     fracture_.nucleate(s.step, t1, s, model_, assembly_);
   }
-  loads_.external_forces(t1, s.x, s.external_force);
+  loads_.external_forces(t1, s, s.external_force, s.external_director_force);
   correct(s, dt, t1);
   constraints_.apply_rotations(t1, s);
   constraints_.add_rotation_work(s, model_);
   s.time = t1;
   ++s.step;
   check_finite(s);
+  if (relaxation_.enabled) relax(s);
+}
+
+// Static relaxation (docs/theory.md §7.5): when the global kinetic energy has passed a peak, the free velocities are
+// set to zero (the removed energy is booked as damping), so the motion settles into the static state; once the
+// programs have reached their final values, the run is relaxed when the out-of-balance force is small. The global
+// sums are exact (ExactSum), so the decisions are the same on any rank count.
+void CentralDifference::relax(ShellState& s) {
+  ExactSum kinetic;
+  for (LocalId le = 0; le < model_.owned; ++le) {
+    for (int A = 0; A < position_nodes; ++A)
+      for (int c = 0; c < 3; ++c) kinetic.add(0.5 * *model_.mass.at(le, A) * s.v.at(le, A)[c] * s.v.at(le, A)[c]);
+    for (int b = 0; b < director_nodes; ++b) kinetic.add(model_.rotary_kinetic(s, le, b));
+  }
+  kinetic.allreduce(model_.dm.comm());
+  const double k = kinetic.value();
+  if (k < kinetic_before_) {
+    reset_free_velocities(s);
+    kinetic_before_ = 0;
+  } else {
+    kinetic_before_ = k;
+  }
+  if (s.time < relaxation_.start) return;
+  residual_ = relative_residual(s);
+  relaxed_ = residual_ <= relaxation_.tolerance;
+}
+
+void CentralDifference::reset_free_velocities(ShellState& s) const {
+  using Motion = Constraints::Motion;
+  for (LocalId le = 0; le < model_.owned; ++le) {
+    double removed = 0;
+    for (int A = 0; A < position_nodes; ++A) {
+      const LocalId i = le * position_nodes + A;
+      if (constraints_.motion(i) == Motion::held) continue;
+      double* v = s.v.point(i);
+      for (int c = 0; c < 3; ++c)
+        if (!constraints_.prescribed(i, c)) removed += 0.5 * *model_.mass.point(i) * v[c] * v[c], v[c] = 0;
+    }
+    for (int b = 0; b < director_nodes; ++b) {
+      const LocalId j = le * director_nodes + b;
+      if (constraints_.director_held(j)) continue;
+      removed += model_.rotary_kinetic(s, le, b);
+      s.director_rate.point(j)[0] = s.director_rate.point(j)[1] = 0;
+    }
+    *s.damping_dissipation.at(le) += removed;
+  }
+}
+
+// |f_ext - f_int| over the free components (projected on the constraints) relative to the norm of the forces that
+// hold the state: loads, reactions and the couples of held directors.
+double CentralDifference::relative_residual(const ShellState& s) const {
+  using Motion = Constraints::Motion;
+  ExactSum r2, f2;
+  for (LocalId i = 0; i < model_.owned * position_nodes; ++i) {
+    const double *f = s.internal_force.point(i), *fe = s.external_force.point(i), *R = s.reaction.point(i);
+    double r[3];
+    for (int c = 0; c < 3; ++c) r[c] = constraints_.free(i, c) ? fe[c] - f[c] : 0.0, f2.add(fe[c] * fe[c] + R[c] * R[c]);
+    if (constraints_.motion(i) == Motion::on_planes) constraints_.position_planes().remove_normal_components(i, r);
+    for (int c = 0; c < 3; ++c) r2.add(r[c] * r[c]);
+  }
+  for (LocalId j = 0; j < model_.owned * director_nodes; ++j) {
+    const double *g = s.director_force.point(j), *ge = s.external_director_force.point(j);
+    double w[3], L[3][3], rT[2];
+    for (int c = 0; c < 3; ++c) w[c] = ge[c] - g[c], f2.add(ge[c] * ge[c]);
+    if (constraints_.director_held(j)) {
+      for (int c = 0; c < 3; ++c) f2.add(g[c] * g[c]);
+      continue;
+    }
+    load_matrix(s.rotation.point(j), L);
+    disc::lambda_bar_transpose_times(L, w, rT);
+    constraints_.director_constraints().remove_forbidden_components(j, L, s.t.point(j), rT);
+    r2.add(rT[0] * rT[0] + rT[1] * rT[1]);
+  }
+  r2.allreduce(model_.dm.comm()), f2.allreduce(model_.dm.comm());
+  const double ref = std::sqrt(f2.value());
+  return ref > 0 ? std::sqrt(r2.value()) / ref : std::sqrt(r2.value());
 }
 
 void CentralDifference::remember_step_start(const ShellState& s) {
   x_start_.vector().assign(s.x.vector().begin(), s.x.vector().begin() + std::size_t(model_.owned) * position_values);
   fext_start_ = s.external_force, reaction_start_ = s.reaction;
+  if (loads_.has_director_loads()) {
+    t_start_.vector().assign(s.t.vector().begin(), s.t.vector().begin() + std::size_t(model_.owned) * director_values);
+    gext_start_ = s.external_director_force;
+  }
   constraints_.begin_step(s, model_);
 }
 
@@ -100,7 +184,7 @@ void CentralDifference::predict(ShellState& s, double dt, double t1) {
     }
     for (int c = 0; c < 3; ++c) x[c] += dx[c];
   }
-  const auto& director_planes = constraints_.director_planes();
+  const auto& director_constraints = constraints_.director_constraints();
   for (LocalId j = 0; j < model_.owned * director_nodes; ++j) {
     double L[3][3], dT[2];
     load_matrix(s.rotation.point(j), L);
@@ -112,8 +196,8 @@ void CentralDifference::predict(ShellState& s, double dt, double t1) {
       dT[c] = held ? 0.0 : dt * Td[c] + 0.5 * dt * dt * Tdd[c];  // paper eq. 47
       Tp[c] = held ? 0.0 : Td[c] + 0.5 * dt * Tdd[c];            // paper eq. 48, gamma = 1/2
     }
-    director_planes.remove_director_components(j, L, dT);
-    director_planes.remove_director_components(j, L, Tp);
+    director_constraints.remove_forbidden_components(j, L, s.t.point(j), dT);
+    director_constraints.remove_forbidden_components(j, L, s.t.point(j), Tp);
     double* t = s.t.point(j);
     disc::update_director(t, L, dT, t, L);  // Algorithm 1
     store_matrix(L, s.rotation.point(j));
@@ -191,14 +275,20 @@ void CentralDifference::accelerate(ShellState& s, LocalId le, double t, double d
     const LocalId j = le * director_nodes + b;
     double L[3][3], fT[2];
     load_matrix(s.rotation.point(j), L);
-    disc::lambda_bar_transpose_times(L, s.director_force.point(j), fT);  // f_T = Lambda-bar^T g
+    if (loads_.has_director_loads()) {  // f_T = Lambda-bar^T (g - g_ext)
+      double g[3];
+      for (int c = 0; c < 3; ++c) g[c] = s.director_force.point(j)[c] - s.external_director_force.point(j)[c];
+      disc::lambda_bar_transpose_times(L, g, fT);
+    } else {
+      disc::lambda_bar_transpose_times(L, s.director_force.point(j), fT);
+    }
     const double I = *model_.inertia.point(j);
     const double* Tp = director_rate.point(j);
     for (int c = 0; c < 2; ++c) {
       diss += dt * alpha * I * Tp[c] * Tp[c];
       fT[c] += alpha * I * Tp[c];
     }
-    constraints_.director_planes().remove_director_components(j, L, fT);
+    constraints_.director_constraints().remove_forbidden_components(j, L, s.t.point(j), fT);
     const bool held = constraints_.director_held(j);
     for (int c = 0; c < 2; ++c) s.director_acceleration.point(j)[c] = held ? 0.0 : -fT[c] / I;
   }
@@ -236,6 +326,11 @@ void CentralDifference::book_work(ShellState& s, LocalId le) const {
     const double dx = x[k] - x0[k];
     wext += 0.5 * (fe0[k] + fe[k]) * dx;
     wreact += 0.5 * (R0[k] + R[k]) * dx;
+  }
+  if (loads_.has_director_loads()) {  // the work of the edge couples on the directors
+    const double *t = s.t.at(le), *t0 = t_start_.at(le), *ge = s.external_director_force.at(le);
+    const double* ge0 = gext_start_.at(le);
+    for (int k = 0; k < director_values; ++k) wext += 0.5 * (ge0[k] + ge[k]) * (t[k] - t0[k]);
   }
   *s.external_work.at(le) += wext, *s.reaction_work.at(le) += wreact;
 }

@@ -16,9 +16,15 @@ struct ShellModel;
 
 class CentralDifference {
  public:
+  /// Static relaxation (docs/theory.md §7.5): kinetic-energy peak resets and the stopping test, active from
+  /// time `start` (when the loads and prescribed motions have reached their final values).
+  struct Relaxation {
+    bool enabled = false;
+    double tolerance = 1e-6, start = 0;
+  };
   /// `mass_damping`: alpha of the damping force alpha m v (dynamic relaxation; 0 = none).
   CentralDifference(ShellModel& model, Constraints& constraints, const Loads& loads, ForceAssembly& assembly,
-                    Fracture& fracture, PhaseTimes& times, double mass_damping);
+                    Fracture& fracture, PhaseTimes& times, double mass_damping, Relaxation relaxation);
 
   /// Start-up (docs/theory.md §7.4): forces, loads, accelerations and reactions of the initial state.
   /// Collective.
@@ -26,6 +32,10 @@ class CentralDifference {
   /// One step t_n -> t_n + dt. NumericalError (on every rank) if the state becomes non-finite; Error if a
   /// plastic return map fails. Collective.
   void step(ShellState& s, double dt);
+  /// Static relaxation: whether the last step reached the static equilibrium, and its relative residual
+  /// (NaN before the first test).
+  bool relaxed() const { return relaxed_; }
+  double relaxation_residual() const { return residual_; }
 
  private:
   void remember_step_start(const ShellState& s);
@@ -36,6 +46,9 @@ class CentralDifference {
   void correct_velocities(ShellState& s, LocalId le, double dt, double t1) const;
   void book_work(ShellState& s, LocalId le) const;
   void check_finite(const ShellState& s) const;
+  void relax(ShellState& s);
+  void reset_free_velocities(ShellState& s) const;
+  double relative_residual(const ShellState& s) const;
 
   ShellModel& model_;
   Constraints& constraints_;
@@ -44,7 +57,12 @@ class CentralDifference {
   Fracture& fracture_;
   PhaseTimes& times_;
   double alpha_;
+  Relaxation relaxation_;
+  double kinetic_before_ = 0;  // the global kinetic energy after the previous step (static relaxation)
+  bool relaxed_ = false;
+  double residual_;
   PositionRows x_start_, fext_start_, reaction_start_;  // positions, loads and reactions at t_n (work accounts)
+  DirectorRows t_start_, gext_start_;                   // directors and director loads at t_n (edge moments)
   RateRows director_rate_predicted_;  // T-dot + dt/2 T-ddot (eq. 48)
 };
 

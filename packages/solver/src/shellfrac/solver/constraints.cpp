@@ -22,13 +22,49 @@ double CosineRamp::rate(double t, double amplitude) const {
   return (duration > 0 && t < duration) ? 0.5 * amplitude * M_PI / duration * std::sin(M_PI * t / duration) : 0.0;
 }
 
-void PlaneLists::assign(const std::vector<std::vector<Plane>>& lists) {
+void PlaneLists::assign(std::vector<std::vector<Plane>> lists) {
   offset_.assign(1, 0), planes_.clear();
-  for (const auto& l : lists) {
-    planes_.insert(planes_.end(), l.begin(), l.end());
+  for (auto& l : lists) {
+    std::vector<Plane> basis;
+    for (const Plane& p : l) {
+      Vec3 n = p.normal;
+      for (const Plane& q : basis) {
+        const double c = n[0] * q.normal[0] + n[1] * q.normal[1] + n[2] * q.normal[2];
+        for (int k = 0; k < 3; ++k) n[k] -= c * q.normal[k];
+      }
+      const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      if (len < 1e-12) continue;  // in the span of the earlier planes: no new constraint
+      if (!basis.empty())
+        for (double& c : n) c /= len;
+      basis.push_back({basis.empty() ? p.normal : n, p.condition});
+    }
+    planes_.insert(planes_.end(), basis.begin(), basis.end());
     offset_.push_back(static_cast<int>(planes_.size()));
   }
 }
+
+void DirectorConstraintLists::assign(const std::vector<std::vector<DirectorConstraint>>& lists) {
+  offset_.assign(1, 0), constraints_.clear();
+  for (const auto& l : lists) {
+    constraints_.insert(constraints_.end(), l.begin(), l.end());
+    offset_.push_back(static_cast<int>(constraints_.size()));
+  }
+}
+
+namespace {
+/// Two unit vectors spanning the plane normal to the unit vector n.
+void in_plane_basis(const Vec3& n, Vec3& e1, Vec3& e2) {
+  int k = 0;  // the coordinate axis least aligned with n
+  for (int c = 1; c < 3; ++c)
+    if (std::abs(n[c]) < std::abs(n[k])) k = c;
+  double a[3] = {0, 0, 0}, u[3], w[3];
+  a[k] = 1;
+  disc::cross3(n.data(), a, u);
+  disc::normalize3(u);
+  disc::cross3(n.data(), u, w);
+  e1 = {u[0], u[1], u[2]}, e2 = {w[0], w[1], w[2]};
+}
+}  // namespace
 
 Constraints::Constraints(const std::vector<BoundaryCondition>& conditions, const MeshSets& sets,
                          const decomposition::DistributedMesh& dm, const std::string& deck_file)
@@ -38,7 +74,8 @@ Constraints::Constraints(const std::vector<BoundaryCondition>& conditions, const
   held_by_.assign(no * 6, -1), prescribing_.assign(no * 6, -1), director_held_by_.assign(no * 3, -1);
   acts_on_.assign(no * 6, 0);
   std::vector<int> rotating(no * 3, -1);
-  std::vector<std::vector<Plane>> planes_x(no * 6), planes_t(no * 3);
+  std::vector<std::vector<Plane>> planes_x(no * 6);
+  std::vector<std::vector<DirectorConstraint>> planes_t(no * 3);
   using T = BoundaryCondition::Type;
   for (std::size_t ib = 0; ib < conditions_.size(); ++ib) {
     const auto& bc = conditions_[ib];
@@ -56,10 +93,16 @@ Constraints::Constraints(const std::vector<BoundaryCondition>& conditions, const
         if (holds_position && held_by_[i] < 0) held_by_[i] = b;
         if (bc.type == T::PrescribedVelocity) prescribing_[i] = b;
         if (bc.type == T::Symmetry) planes_x[i].push_back({bc.normal, b});
+        if (bc.type == T::RigidDiaphragm) {
+          Vec3 e1, e2;
+          in_plane_basis(bc.normal, e1, e2);
+          planes_x[i].push_back({e1, b}), planes_x[i].push_back({e2, b});
+        }
         if (A >= 3) continue;
         const bool holds_director = bc.type == T::Clamped || bc.type == T::PrescribedVelocity;
         if (holds_director && director_held_by_[j] < 0) director_held_by_[j] = b;
-        if (bc.type == T::Symmetry) planes_t[j].push_back({bc.normal, b});
+        if (bc.type == T::Symmetry || bc.type == T::RigidDiaphragm)
+          planes_t[j].push_back({bc.normal, bc.type == T::RigidDiaphragm, b});
         if (bc.type == T::PrescribedRotation) rotating[j] = b;
       }
   }
@@ -84,7 +127,7 @@ Constraints::Constraints(const std::vector<BoundaryCondition>& conditions, const
     if (director_held_by_[j] >= 0) planes_t[j].clear();
   }
   position_planes_.assign(planes_x);
-  director_planes_.assign(planes_t);
+  director_constraints_.assign(planes_t);
 }
 
 Vec3 Constraints::prescribed_velocity(int bc, double t) const {
@@ -152,7 +195,6 @@ void Constraints::reaction_contributions(const ShellState& s, std::size_t bc, Co
     for (int A = 0; A < 6; ++A) {
       const LocalId i = le * 6 + A;
       if (!(acts_on_[i] & (1u << bc))) continue;
-      force.ids.push_back(dm_.dg_node_gid(le, A));
       const bool holder = held_by_[i] == b || prescribing_[i] == b;  // the node's reaction is this condition's
       const double* R = s.reaction.point(i);
       const double* f = s.internal_force.point(i);
@@ -173,7 +215,6 @@ void Constraints::reaction_contributions(const ShellState& s, std::size_t bc, Co
   for (LocalId le = 0; le < dm_.num_owned(); ++le)
     for (int a = 0; a < 3; ++a) {
       if (director_held_by_[le * 3 + a] != b) continue;
-      couple.ids.push_back(dm_.dg_node_gid(le, a));
       double m[3];
       disc::cross3(s.t.at(le, a), s.director_force.at(le, a), m);
       for (int c = 0; c < 3; ++c) couple.values[c].push_back(m[c]);

@@ -1,15 +1,17 @@
 #pragma once
 /// \file constraints.hpp
 /// Boundary conditions on the DG copies of mesh nodes (docs/theory.md §10.1-10.2): which position and director
-/// nodes are held, follow a velocity program, stay on symmetry planes or follow a rotation program; the
-/// projections that the time integrator applies to increments, velocities and accelerations; and the support
-/// reactions of each condition.
+/// nodes are held, follow a velocity program, stay on symmetry planes or rigid diaphragms, or follow a rotation
+/// program; the projections that the time integrator applies to increments, velocities and accelerations; and
+/// the support reactions of each condition.
 ///
-/// Composition on one node (deck order does not matter): a held node (Clamped, Simply Supported) is held
-/// whatever else acts on it; a node that follows a Prescribed Velocity ignores symmetry planes; the directors
-/// of Clamped and Prescribed Velocity nodes are held, and a Prescribed Rotation acts only on directors that
-/// nothing else holds. Each node's reaction belongs to the condition that holds it: the first holding condition
-/// in deck order, or the prescribing one; a symmetry condition reports the force normal to its own plane.
+/// Composition on one node: a held node (Clamped, Simply Supported) is held whatever else acts on it; a node
+/// that follows a Prescribed Velocity ignores planes; the directions that symmetry planes and diaphragms forbid
+/// are composed into the orthogonal projection on the intersection of their constraints (so the composition
+/// is workless); the directors of Clamped and Prescribed Velocity nodes are held, and a Prescribed Rotation acts
+/// only on directors that nothing else holds. Each node's reaction belongs to the condition that holds it: the
+/// first holding condition in deck order, or the prescribing one; a symmetry plane or diaphragm reports the
+/// force along the directions it forbids.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -37,7 +39,8 @@ struct CosineRamp {
   double rate(double t, double amplitude = 1.0) const;
 };
 
-/// A symmetry plane acting on a node: its unit normal and the condition it belongs to.
+/// A direction along which a position node may not move (a symmetry plane's normal, or one of the two in-plane
+/// directions of a rigid diaphragm), and the condition it belongs to. The planes of one node are orthonormal.
 struct Plane {
   Vec3 normal;
   int condition;
@@ -46,10 +49,13 @@ struct Plane {
 /// Short lists of planes per node, compressed (most nodes have none), in deck order.
 class PlaneLists {
  public:
-  /// From one list per node.
-  void assign(const std::vector<std::vector<Plane>>& lists);
+  /// From one list per node; each list is made orthonormal (Gram-Schmidt in deck order: a normal already in the
+  /// span of the earlier ones adds no constraint and is dropped), so that removing the components along the
+  /// planes one after the other is the orthogonal projection on the intersection of the constraints.
+  void assign(std::vector<std::vector<Plane>> lists);
   const Plane* begin(LocalId i) const { return planes_.data() + offset_[i]; }
   const Plane* end(LocalId i) const { return planes_.data() + offset_[i + 1]; }
+  bool empty(LocalId i) const { return offset_[i] == offset_[i + 1]; }
   /// w -= (w . n) n for each plane normal n of node i, in order.
   void remove_normal_components(LocalId i, double w[3]) const {
     for (const Plane* p = begin(i); p != end(i); ++p) {
@@ -58,20 +64,58 @@ class PlaneLists {
       for (int c = 0; c < 3; ++c) w[c] -= wn * n[c];
     }
   }
-  /// The same for the material components w[2] of a director quantity whose rotation is L: each normal is
-  /// expressed as d = Lambda-bar^T n and projected out of w (the director stays in the plane, §10.1).
-  void remove_director_components(LocalId i, const double L[3][3], double w[2]) const {
-    for (const Plane* p = begin(i); p != end(i); ++p) {
-      double d[2];
-      disc::lambda_bar_transpose_times(L, p->normal.data(), d);
-      disc::project_out(w, d);
-    }
-  }
   std::size_t bytes() const { return sizeof(int) * offset_.size() + sizeof(Plane) * planes_.size(); }
 
  private:
   std::vector<int> offset_{0};
   std::vector<Plane> planes_;
+};
+
+/// A constraint on a director node: the director keeps its component along `axis` (a symmetry plane with normal
+/// `axis`: t . n stays 0), or it does not rotate about `axis` (a rigid diaphragm with normal `axis`).
+struct DirectorConstraint {
+  Vec3 axis;
+  bool no_rotation_about_axis;
+  int condition;
+};
+
+/// Short lists of director constraints per node, compressed, in deck order.
+class DirectorConstraintLists {
+ public:
+  void assign(const std::vector<std::vector<DirectorConstraint>>& lists);
+  bool empty(LocalId j) const { return offset_[j] == offset_[j + 1]; }
+  /// Removes from the material components w[2] of a director rate, increment or force of director node j (current
+  /// director t, rotation L) the directions its constraints forbid (docs/theory.md §10.1): d = Lambda-bar^T n for a
+  /// kept component t . n, d = Lambda-bar^T (n x t) for no rotation about n. Several constraints are composed by an
+  /// orthogonal projection on the intersection (two independent ones hold the director).
+  void remove_forbidden_components(LocalId j, const double L[3][3], const double t[3], double w[2]) const {
+    if (empty(j)) return;
+    double d[2][2];
+    int nd = 0;
+    for (int k = offset_[j]; k < offset_[j + 1] && nd < 2; ++k) {
+      const DirectorConstraint& c = constraints_[k];
+      double v[3];
+      if (c.no_rotation_about_axis)
+        disc::cross3(c.axis.data(), t, v);
+      else
+        disc::copy3(c.axis.data(), v);
+      disc::lambda_bar_transpose_times(L, v, d[nd]);
+      if (nd == 1) {  // orthogonalize against the first (2-D Gram-Schmidt)
+        const double d00 = d[0][0] * d[0][0] + d[0][1] * d[0][1];
+        if (d00 > 0) {
+          const double f = (d[1][0] * d[0][0] + d[1][1] * d[0][1]) / d00;
+          d[1][0] -= f * d[0][0], d[1][1] -= f * d[0][1];
+        }
+        if (d[1][0] * d[1][0] + d[1][1] * d[1][1] <= 1e-24 * (d00 > 0 ? d00 : 1.0)) continue;  // dependent
+      }
+      ++nd;
+    }
+    for (int k = 0; k < nd; ++k) disc::project_out(w, d[k]);
+  }
+
+ private:
+  std::vector<int> offset_{0};
+  std::vector<DirectorConstraint> constraints_;
 };
 
 class Constraints {
@@ -94,7 +138,7 @@ class Constraints {
   const PlaneLists& position_planes() const { return position_planes_; }
   // Director node j = le * 3 + b of an owned element.
   bool director_held(LocalId j) const { return director_held_by_[j] >= 0; }
-  const PlaneLists& director_planes() const { return director_planes_; }
+  const DirectorConstraintLists& director_constraints() const { return director_constraints_; }
 
   /// Displacement, velocity and acceleration programs of Prescribed Velocity condition bc at time t.
   Vec3 prescribed_displacement(int bc, double t) const;
@@ -113,9 +157,8 @@ class Constraints {
   void add_rotation_work(ShellState& s, const ShellModel& model) const;
 
   /// Per condition in deck order: its reaction force (3), then its support couple sum t x g over the director
-  /// nodes it holds (3), as local contributions with the global DG node ids they belong to (for an ordered sum).
+  /// nodes it holds (3), as this rank's contributions, one per node (for an exact global sum).
   struct Contribution {
-    std::vector<GlobalId> ids;
     std::vector<double> values[3];
   };
   void reaction_contributions(const ShellState& s, std::size_t bc, Contribution& force, Contribution& couple) const;
@@ -137,7 +180,8 @@ class Constraints {
   std::vector<Motion> motion_;                         // per owned position node
   std::vector<int> director_held_by_;        // per owned director node: condition index or -1
   std::vector<std::uint32_t> acts_on_;       // per owned position node: bit b set if condition b acts on it
-  PlaneLists position_planes_, director_planes_;  // per owned position / director node
+  PlaneLists position_planes_;                        // per owned position node
+  DirectorConstraintLists director_constraints_;      // per owned director node
   std::vector<RotatedNode> rotated_;
 };
 

@@ -63,7 +63,7 @@ void read_sections(Teuchos::ParameterList& pl, const params::Context& ctx, Deck&
   }
 }
 
-/// Boundary Conditions, Initial Conditions and Loads, in deck order.
+/// Boundary Conditions, Initial Conditions, Loads and Regions, in deck order.
 void read_conditions(Teuchos::ParameterList& pl, const params::Context& ctx, Deck& d) {
   for_each_named_sublist(pl, "Boundary Conditions", " (Type, Node Set)", ctx,
                          [&](const auto& name, auto& sub, const auto& c) {
@@ -76,6 +76,9 @@ void read_conditions(Teuchos::ParameterList& pl, const params::Context& ctx, Dec
   for_each_named_sublist(pl, "Loads", "", ctx, [&](const auto& name, auto& sub, const auto& c) {
     d.loads.push_back(Load::from_parameters(name, sub, c));
   });
+  for_each_named_sublist(pl, "Regions", " (Shape, ...)", ctx, [&](const auto& name, auto& sub, const auto& c) {
+    d.regions.push_back(Region::from_parameters(name, sub, c));
+  });
 }
 
 /// Output and Checkpoint: result names, the output directory (must exist) and the checkpoint paths.
@@ -87,6 +90,7 @@ void read_output(Teuchos::ParameterList& pl, const params::Context& ctx, Deck& d
   if (d.output.base_name.empty()) d.output.base_name = stem_of(file);
   d.output.directory = out.get<std::string>("Directory");
   for (const auto& p : out.get<Teuchos::Array<std::string>>("Probes")) d.output.probes.push_back(p);
+  d.output.progress_interval = out.get<double>("Progress Interval");
   auto& ck = pl.sublist("Checkpoint");
   params::validate(ck, *CheckpointParams::valid_parameters(), ctx / "Checkpoint");
   d.checkpoint.step_interval = ck.get<int>("Step Interval");
@@ -115,6 +119,11 @@ Teuchos::RCP<const Teuchos::ParameterList> OutputParams::valid_parameters() {
   pl->set("Base Name", "", "Base name of the results: <Base Name>.exo (or the per-rank set <Base Name>.exo.<np>.<rank>) "
                            "and <Base Name>_history.csv; empty = the deck's file name without extension");
   pl->set("Directory", "", "Directory for the results (must exist); empty = the current directory");
+  pl->set("Progress Interval", 10.0,
+          "Seconds of wall time between progress lines on the console (rank 0): step, time, step size, percent "
+          "done, steps per second, elapsed time, estimated time to the end, energy balance error relative to the "
+          "energy put in, activated and separated edges; 0 = none (also shellfrac --quiet)",
+          params::non_negative_double());
   pl->set("Probes", Teuchos::Array<std::string>(), "Node sets whose mean displacement and velocity (over all DG "
                                                      "copies of their nodes) are history columns <set>_displ_x ... "
                                                      "<set>_vel_z, e.g. {tip, centre}");
@@ -152,6 +161,9 @@ Teuchos::RCP<const Teuchos::ParameterList> Deck::valid_parameters() {
   ics.set("initial velocity", *InitialVelocity::valid_parameters());
   auto& loads = pl->sublist("Loads", false, "One sublist per load, named freely");
   loads.set("pressure", *Load::valid_parameters());
+  auto& regions = pl->sublist("Regions", false, "One sublist per region of space, named freely; a region's name "
+                                                "serves as an element set, node set or side set");
+  regions.set("patch", *Region::valid_parameters());
   return pl;
 }
 
@@ -166,7 +178,8 @@ Deck Deck::from_parameters(const Teuchos::RCP<Teuchos::ParameterList>& deck, con
   // Top level: only the known sublists; user-named children of Blocks/Materials are validated one by one.
   Teuchos::ParameterList top("shellfrac");
   for (const char* name : {"Mesh", "Blocks", "Materials", "Partitioning", "Output", "Checkpoint", "Discretization",
-                           "Time Integration", "Fracture", "Boundary Conditions", "Initial Conditions", "Loads"})
+                           "Time Integration", "Fracture", "Boundary Conditions", "Initial Conditions", "Loads",
+                           "Regions"})
     top.sublist(name);
   params::validate(pl, top, ctx);
   require_sections(pl, ctx);

@@ -14,6 +14,7 @@
 #include "shellfrac/materials/material_params.hpp"
 #include "shellfrac/solver/dynamics_params.hpp"
 #include "shellfrac/solver/mesh_factory.hpp"
+#include "shellfrac/solver/regions.hpp"
 
 namespace shellfrac::decomposition {
 struct PartitionParams;
@@ -26,6 +27,7 @@ struct OutputParams {
   std::string base_name;  ///< results are <directory>/<base_name>.exo and <base_name>_history.csv
   std::string directory;  ///< "" = the current directory
   std::vector<std::string> probes;  ///< node sets whose mean displacement/velocity go to the history
+  double progress_interval = 10;    ///< seconds of wall time between progress lines on rank 0 (0 = none)
 
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
   /// <directory>/<base_name><suffix> (no directory part when directory is empty).
@@ -56,6 +58,7 @@ struct Deck {
   std::vector<BoundaryCondition> boundary_conditions;
   std::vector<InitialVelocity> initial_velocities;
   std::vector<Load> loads;
+  std::vector<Region> regions;  ///< named regions, usable as element, node and side sets
   Teuchos::RCP<Teuchos::ParameterList> expanded;  ///< the deck with every default filled in
 
   /// The complete valid parameter tree (user-named sublists shown with one example entry), as printed by

@@ -14,12 +14,17 @@ Teuchos::RCP<const Teuchos::ParameterList> DiscretizationParams::valid_parameter
   pl->set("Position Penalty", 3.0, "c_x in beta_x = c_x E h (paper eq. 42; 3 in every example of the paper)",
           params::positive_double());
   pl->set("Director Penalty", 3.0, "c_T in beta_T = c_T E h^3/12 (paper eq. 42)", params::positive_double());
+  params::set_choice(*pl, "Membrane Strain", "Point Values",
+                     "Point Values: the membrane strains at the area points; P1 Projection: their L2 projection on "
+                     "linear fields in each element (theory.md §5.4)",
+                     {"Point Values", "P1 Projection"});
   return pl;
 }
 
 DiscretizationParams DiscretizationParams::from_parameters(Teuchos::ParameterList& pl, const params::Context& ctx) {
   params::validate(pl, *valid_parameters(), ctx);
-  return {pl.get<double>("Position Penalty"), pl.get<double>("Director Penalty")};
+  return {pl.get<double>("Position Penalty"), pl.get<double>("Director Penalty"),
+          pl.get<std::string>("Membrane Strain") == "P1 Projection"};
 }
 
 Teuchos::RCP<const Teuchos::ParameterList> TimeParams::valid_parameters() {
@@ -36,6 +41,14 @@ Teuchos::RCP<const Teuchos::ParameterList> TimeParams::valid_parameters() {
   pl->set("Output Interval", 0.0, "Time between Exodus outputs [time]; 0 = first and last step only",
           params::non_negative_double());
   pl->set("History Interval", 1, "Steps between rows of the history CSV", params::int_range(1, 1 << 30));
+  pl->set("Static Relaxation", false,
+          "Find the static equilibrium by dynamic relaxation: all free velocities are set to zero at every peak of the "
+          "kinetic energy (the removed energy is booked as damping), and the run stops, before End Time, once the "
+          "loads and prescribed motions have reached their final values and the out-of-balance force of the free "
+          "components is below Relaxation Tolerance times the force norm (loads, reactions, support couples); "
+          "the run reports the residual. End Time is then the limit");
+  pl->set("Relaxation Tolerance", 1e-6, "Static Relaxation: relative residual at which the run stops",
+          params::double_range(0.0, 1.0, true, true));
   pl->set("Mass Damping", 0.0, "alpha of a mass-proportional damping force alpha m v [1/time], for dynamic relaxation "
                                "to static states; 0 = undamped",
           params::non_negative_double());
@@ -53,6 +66,8 @@ TimeParams TimeParams::from_parameters(Teuchos::ParameterList& pl, const params:
   t.output_interval = pl.get<double>("Output Interval");
   t.history_interval = pl.get<int>("History Interval");
   t.mass_damping = pl.get<double>("Mass Damping");
+  t.static_relaxation = pl.get<bool>("Static Relaxation");
+  t.relaxation_tolerance = pl.get<double>("Relaxation Tolerance");
   return t;
 }
 
@@ -83,18 +98,22 @@ Teuchos::RCP<const Teuchos::ParameterList> BoundaryCondition::valid_parameters()
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("<condition name>"));
   params::set_choice(*pl, "Type", "Clamped",
                      "Clamped: positions and directors fixed; Simply Supported: positions fixed, directors free; "
-                     "Symmetry: no motion along Normal and the director stays in the plane; Prescribed Velocity: "
+                     "Symmetry: no motion along Normal and the director stays in the plane; Rigid Diaphragm: no "
+                     "motion in the plane normal to Normal (the motion along Normal is free) and no rotation of the "
+                     "director about Normal (it may tilt out of the plane), the end support of a roof or a tube; "
+                     "Prescribed Velocity: "
                      "velocity ramped smoothly to Velocity over Ramp Time, directors clamped; Prescribed Rotation: "
                      "directors rotated about Axis by an angle ramped smoothly to Angle over Ramp Time, positions free "
                      "(an end moment without drilling DOFs; theory.md §10.1-10.2)",
-                     {"Clamped", "Simply Supported", "Symmetry", "Prescribed Velocity", "Prescribed Rotation"});
+                     {"Clamped", "Simply Supported", "Symmetry", "Rigid Diaphragm", "Prescribed Velocity",
+                      "Prescribed Rotation"});
   pl->set("Node Set", "x_min", "Name of a node set of the mesh, or 'all' (every node; with Elements: every node of "
                                "those elements)");
   pl->set("Elements", "all",
           "Element set or block: the condition acts only on the DG copies of the Node Set's nodes that belong to these "
           "elements; 'all' = every copy. A clamping fixture modelled as part of the mesh (its elements held, the "
           "edges at its border breakable): Node Set = all, Elements = the fixture's block");
-  pl->set("Normal", Teuchos::Array<double>(Teuchos::tuple<double>(1.0, 0.0, 0.0)), "Symmetry: normal of the symmetry plane {nx, ny, nz}");
+  pl->set("Normal", Teuchos::Array<double>(Teuchos::tuple<double>(1.0, 0.0, 0.0)), "Symmetry, Rigid Diaphragm: normal of the plane {nx, ny, nz}");
   pl->set("Velocity", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0, 0.0)),
           "Prescribed Velocity: final velocity {vx, vy, vz} [length/time]");
   pl->set("Components", "xyz",
@@ -117,6 +136,7 @@ BoundaryCondition BoundaryCondition::from_parameters(const std::string& name, Te
   bc.type = type == "Clamped"            ? Type::Clamped
             : type == "Simply Supported" ? Type::SimplySupported
             : type == "Symmetry"         ? Type::Symmetry
+            : type == "Rigid Diaphragm"  ? Type::RigidDiaphragm
             : type == "Prescribed Velocity" ? Type::PrescribedVelocity
                                             : Type::PrescribedRotation;
   bc.node_set = pl.get<std::string>("Node Set");
@@ -128,7 +148,8 @@ BoundaryCondition BoundaryCondition::from_parameters(const std::string& name, Te
   };
   bc.normal = vec3("Normal");
   const double n = std::sqrt(bc.normal[0] * bc.normal[0] + bc.normal[1] * bc.normal[1] + bc.normal[2] * bc.normal[2]);
-  SHELLFRAC_INPUT_REQUIRE(bc.type != Type::Symmetry || n > 0, ctx.file << ": '" << ctx.path << "->Normal' is zero");
+  SHELLFRAC_INPUT_REQUIRE((bc.type != Type::Symmetry && bc.type != Type::RigidDiaphragm) || n > 0,
+                          ctx.file << ": '" << ctx.path << "->Normal' is zero");
   if (n > 0)
     for (double& c : bc.normal) c /= n;
   bc.velocity = vec3("Velocity");
@@ -179,17 +200,31 @@ InitialVelocity InitialVelocity::from_parameters(const std::string& name, Teucho
   return iv;
 }
 
+namespace {
+/// Linear interpolation in a table, constant outside.
+double table_value(const std::vector<double>& times, const std::vector<double>& values, double t) {
+  if (t <= times.front()) return values.front();
+  if (t >= times.back()) return values.back();
+  const auto i = std::upper_bound(times.begin(), times.end(), t) - times.begin();
+  const double w = (t - times[i - 1]) / (times[i] - times[i - 1]);
+  return (1 - w) * values[i - 1] + w * values[i];
+}
+}  // namespace
+
 double Load::pressure_at(double t) const {
   switch (function) {
     case Function::Constant: return pressure;
     case Function::Exponential: return pressure * std::exp(-t / decay_time) * (1 - t / decay_time);
-    case Function::Table: {
-      if (t <= times.front()) return values.front();
-      if (t >= times.back()) return values.back();
-      const auto i = std::upper_bound(times.begin(), times.end(), t) - times.begin();
-      const double w = (t - times[i - 1]) / (times[i] - times[i - 1]);
-      return (1 - w) * values[i - 1] + w * values[i];
-    }
+    case Function::Table: return table_value(times, values, t);
+  }
+  return 0;
+}
+
+double Load::factor_at(double t) const {
+  switch (function) {
+    case Function::Constant: return 1.0;
+    case Function::Exponential: return std::exp(-t / decay_time) * (1 - t / decay_time);
+    case Function::Table: return table_value(times, values, t);
   }
   return 0;
 }
@@ -198,17 +233,33 @@ Teuchos::RCP<const Teuchos::ParameterList> Load::valid_parameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("<load name>"));
   params::set_choice(*pl, "Type", "Pressure",
                      "Pressure: follower pressure normal to the current mid-surface (along G1 x G2 of each element; "
-                     "theory.md §10.3); Gravity: uniform body acceleration on the lumped masses",
-                     {"Pressure", "Gravity"});
-  pl->set("Elements", "all", "Element set or block carrying the load; 'all' for every element");
+                     "theory.md §10.3); Gravity: uniform body acceleration on the lumped masses; Nodal Force: a force "
+                     "at each mesh node of Node Set, shared equally by the node's DG copies; Line Load: a force per "
+                     "unit length on the edges of Side Set, integrated along the quadratic edges; Edge Moment: a "
+                     "couple per unit length on the directors of the edges of Side Set (its drilling part, along "
+                     "the director, does no work)",
+                     {"Pressure", "Gravity", "Nodal Force", "Line Load", "Edge Moment"});
+  pl->set("Elements", "all", "Pressure, Gravity: element set or block carrying the load; 'all' for every element");
+  pl->set("Node Set", "", "Nodal Force: node set whose mesh nodes carry the force");
+  pl->set("Side Set", "", "Line Load, Edge Moment: side set whose edges carry the load");
   params::set_choice(*pl, "Function", "Constant",
-                     "Pressure history: Constant p0; Exponential p0 exp(-t/t_p)(1 - t/t_p) (paper §6.5); Table",
+                     "Time function: Constant; Exponential exp(-t/t_p)(1 - t/t_p) (paper §6.5); Table. A Pressure is "
+                     "p0 times it (Table: the values are pressures); the other loads are their vector times it",
                      {"Constant", "Exponential", "Table"});
   pl->set("Pressure", 0.0, "p0 [force/length^2]");
   pl->set("Decay Time", 1.0, "t_p of the Exponential function [time]", params::positive_double());
   pl->set("Times", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 1.0)), "Table: increasing times [time]");
-  pl->set("Values", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0)), "Table: pressures at Times [force/length^2]");
+  pl->set("Values", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0)),
+          "Table: pressures (Pressure) or factors (other loads) at Times");
   pl->set("Acceleration", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0, 0.0)), "Gravity: body acceleration {gx, gy, gz}");
+  pl->set("Force", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0, 0.0)),
+          "Nodal Force: force per mesh node {fx, fy, fz} [force]");
+  pl->set("Force Per Length", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0, 0.0)),
+          "Line Load: force per unit reference length {fx, fy, fz} [force/length]");
+  pl->set("Follower", false, "Line Load: the force turns with the edge (its components in the edge's reference frame "
+                             "of tangent, outward co-normal and director are kept); false: a fixed direction");
+  pl->set("Moment Per Length", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0, 0.0)),
+          "Edge Moment: couple per unit reference length {mx, my, mz} [force length/length]");
   return pl;
 }
 
@@ -216,8 +267,19 @@ Load Load::from_parameters(const std::string& name, Teuchos::ParameterList& pl, 
   params::validate(pl, *valid_parameters(), ctx);
   Load l;
   l.name = name;
-  l.type = pl.get<std::string>("Type") == "Gravity" ? Type::Gravity : Type::Pressure;
+  const std::string type = pl.get<std::string>("Type");
+  l.type = type == "Gravity"       ? Type::Gravity
+           : type == "Nodal Force" ? Type::NodalForce
+           : type == "Line Load"   ? Type::LineLoad
+           : type == "Edge Moment" ? Type::EdgeMoment
+                                   : Type::Pressure;
   l.elements = pl.get<std::string>("Elements");
+  l.node_set = pl.get<std::string>("Node Set");
+  l.side_set = pl.get<std::string>("Side Set");
+  SHELLFRAC_INPUT_REQUIRE(l.type != Type::NodalForce || !l.node_set.empty(),
+                          ctx.file << ": '" << ctx.path << "': a Nodal Force needs a 'Node Set'");
+  SHELLFRAC_INPUT_REQUIRE((l.type != Type::LineLoad && l.type != Type::EdgeMoment) || !l.side_set.empty(),
+                          ctx.file << ": '" << ctx.path << "': a " << type << " needs a 'Side Set'");
   const std::string f = pl.get<std::string>("Function");
   l.function = f == "Exponential" ? Function::Exponential : f == "Table" ? Function::Table : Function::Constant;
   l.pressure = pl.get<double>("Pressure");
@@ -231,9 +293,15 @@ Load Load::from_parameters(const std::string& name, Teuchos::ParameterList& pl, 
     for (std::size_t i = 1; i < l.times.size(); ++i)
       SHELLFRAC_INPUT_REQUIRE(l.times[i] > l.times[i - 1], ctx.file << ": '" << ctx.path << "->Times' must increase");
   }
-  const auto g = pl.get<Teuchos::Array<double>>("Acceleration");
-  SHELLFRAC_INPUT_REQUIRE(g.size() == 3, ctx.file << ": '" << ctx.path << "->Acceleration' must have 3 components");
-  l.acceleration = {g[0], g[1], g[2]};
+  const auto vec3 = [&](const char* what) {
+    const auto v = pl.get<Teuchos::Array<double>>(what);
+    SHELLFRAC_INPUT_REQUIRE(v.size() == 3, ctx.file << ": '" << ctx.path << "->" << what << "' must have 3 components");
+    return Vec3{v[0], v[1], v[2]};
+  };
+  l.acceleration = vec3("Acceleration");
+  l.force = vec3(l.type == Type::LineLoad ? "Force Per Length" : "Force");
+  l.moment = vec3("Moment Per Length");
+  l.follower = pl.get<bool>("Follower");
   return l;
 }
 

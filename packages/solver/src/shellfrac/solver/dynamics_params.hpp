@@ -14,6 +14,7 @@ namespace shellfrac::solver {
 /// "Discretization": DG stabilization constants (paper eq. 42: beta_x = c_x E h, beta_T = c_T E h^3/12).
 struct DiscretizationParams {
   double cx = 3.0, cT = 3.0;
+  bool project_membrane = false;  ///< membrane strains through their P1 projection (theory.md §5.4)
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
   static DiscretizationParams from_parameters(Teuchos::ParameterList& pl, const params::Context& ctx);
 };
@@ -28,6 +29,8 @@ struct TimeParams {
   double output_interval = 0.0;  ///< time between Exodus outputs; 0 = first and last step only
   int history_interval = 1;      ///< steps between history rows
   double mass_damping = 0.0;     ///< alpha of the damping force alpha m v (dynamic relaxation); 0 = none
+  bool static_relaxation = false;  ///< find the static state: kinetic-energy peak resets, stop on the residual
+  double relaxation_tolerance = 1e-6;  ///< stop when |residual| <= tolerance x |load| (static relaxation)
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
   static TimeParams from_parameters(Teuchos::ParameterList& pl, const params::Context& ctx);
 };
@@ -45,12 +48,12 @@ struct FractureParams {
 /// One entry of "Boundary Conditions": a condition on every DG copy of the nodes of a node set (theory.md §10.1,
 /// §10.2).
 struct BoundaryCondition {
-  enum class Type { Clamped, SimplySupported, Symmetry, PrescribedVelocity, PrescribedRotation };
+  enum class Type { Clamped, SimplySupported, Symmetry, RigidDiaphragm, PrescribedVelocity, PrescribedRotation };
   std::string name;
   Type type = Type::Clamped;
   std::string node_set;
   std::string elements = "all";  ///< only the DG copies of the nodes that belong to these elements (set, block or all)
-  Vec3 normal{0, 0, 1};    ///< Symmetry: unit normal of the symmetry plane
+  Vec3 normal{0, 0, 1};    ///< Symmetry, Rigid Diaphragm: unit normal of the plane
   Vec3 velocity{0, 0, 0};  ///< Prescribed Velocity: final velocity V0 (directors clamped on the set)
   std::array<bool, 3> components{true, true, true};  ///< Prescribed Velocity: which of x, y, z are prescribed
   double ramp_time = 0;    ///< Prescribed Velocity/Rotation: cosine ramp duration t_r (0 = applied at once)
@@ -74,20 +77,29 @@ struct InitialVelocity {
                                          const params::Context& ctx);
 };
 
-/// One entry of "Loads" (theory.md §10.3).
+/// One entry of "Loads" (theory.md §10.3). Every load follows its time function: a Pressure's magnitude is p(t)
+/// (Table values are pressures), the other loads are their vector times the factor f(t) (Constant 1,
+/// Exponential exp(-t/t_p)(1 - t/t_p), Table values are factors).
 struct Load {
-  enum class Type { Pressure, Gravity };
+  enum class Type { Pressure, Gravity, NodalForce, LineLoad, EdgeMoment };
   enum class Function { Constant, Exponential, Table };
   std::string name;
   Type type = Type::Pressure;
-  std::string elements;         ///< element set or block name, or "all"
+  std::string elements;         ///< Pressure, Gravity: element set or block name, or "all"
+  std::string node_set;         ///< Nodal Force: node set
+  std::string side_set;         ///< Line Load, Edge Moment: side set
   Function function = Function::Constant;
   double pressure = 0;          ///< p0 [force/length^2]; positive along the element normal G1 x G2
   double decay_time = 0;        ///< t_p of p(t) = p0 exp(-t/t_p)(1 - t/t_p) (paper §6.5)
-  std::vector<double> times, values;  ///< Table: p(t) by linear interpolation, constant outside
+  std::vector<double> times, values;  ///< Table: p(t) or f(t) by linear interpolation, constant outside
   Vec3 acceleration{0, 0, 0};   ///< Gravity: body acceleration [length/time^2]
+  Vec3 force{0, 0, 0};          ///< Nodal Force: force per mesh node; Line Load: force per unit reference length
+  bool follower = false;        ///< Line Load: the force turns with the edge's frame (tangent, co-normal, director)
+  Vec3 moment{0, 0, 0};         ///< Edge Moment: couple per unit reference length
   /// p(t) for a Pressure load.
   double pressure_at(double t) const;
+  /// f(t) for the other loads.
+  double factor_at(double t) const;
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
   static Load from_parameters(const std::string& name, Teuchos::ParameterList& pl, const params::Context& ctx);
 };

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "shellfrac/core/parallel.hpp"
+#include "shellfrac/core/exact_sum.hpp"
 #include "shellfrac/disc/director.hpp"
 #include "shellfrac/disc/small_tensor.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
@@ -13,11 +13,6 @@
 namespace shellfrac::solver {
 
 namespace {
-
-/// The first `n` values of a row array (the owned rows of a one-value-per-row field).
-std::vector<double> owned_values(const Scalars& rows, LocalId n) {
-  return std::vector<double>(rows.vector().begin(), rows.vector().begin() + n);
-}
 
 /// Angular momentum of owned element le about the origin: sum m x × v + sum I t × t-dot (t-dot = Lambda-bar T-dot).
 void element_angular_momentum(const ShellState& s, const ShellModel& model, LocalId le, double out[3]) {
@@ -46,73 +41,51 @@ double element_kinetic(const ShellState& s, const ShellModel& model, LocalId le)
   return k;
 }
 
-/// Fracture accounts of the owned interfaces, summed in interface id order.
-void fracture_accounts(const ShellState& s, const ShellModel& model, const Fracture& fracture,
-                       const std::vector<GlobalId>& egid, const std::vector<GlobalId>& igid, StepRecord& r) {
-  const auto& ifs = model.dm.interfaces();
-  const MPI_Comm comm = model.dm.comm();
-  std::vector<double> uc, dc, ai;
-  std::int64_t ncoh = 0, nsep = 0;
-  for (std::size_t i = 0; i < ifs.size(); ++i)
-    if (ifs[i].owned) {
-      uc.push_back(*s.cohesive_energy.at(i)), dc.push_back(*s.cohesive_dissipation.at(i));
-      ai.push_back(*s.interface_activation_loss.at(i));
-      ncoh += s.mode[i] != intact, nsep += s.mode[i] == separated;
-    }
-  r.cohesive_energy = ordered_sum(igid, uc, comm);
-  r.cohesive_dissipation = ordered_sum(igid, dc, comm);
-  r.activation_loss =
-      ordered_sum(igid, ai, comm) + ordered_sum(egid, owned_values(s.element_activation_loss, model.owned), comm);
-  r.cohesive_edges = parallel::sum(ncoh, comm);
-  r.separated_edges = parallel::sum(nsep, comm);
-  r.fragments = fracture.fragments(s);
-}
-
 }  // namespace
 
-double ordered_sum(const std::vector<GlobalId>& ids, const std::vector<double>& vals, MPI_Comm comm) {
-  const auto all_ids = parallel::all_gather(ids, comm);
-  const auto all_vals = parallel::all_gather(vals, comm);
-  std::vector<std::size_t> order(all_ids.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return all_ids[p] < all_ids[q]; });
-  double sum = 0;
-  for (std::size_t i : order) sum += all_vals[i];
-  return sum;
-}
-
+// One exact accumulator per quantity, reduced together with one MPI_Allreduce: O(1) communication, and the
+// sums are exact, hence independent of the rank count and of the order of the contributions.
 StepRecord step_record(const ShellState& s, const ShellModel& model, const Fracture& fracture, double dt) {
-  const auto& dm = model.dm;
-  const MPI_Comm comm = dm.comm();
+  enum Quantity { kinetic, strain, penalty, external, reaction, damping, plastic, cohesive_stored, cohesive_lost,
+                  activation, cohesive_edges, separated_edges, momentum_x, momentum_y, momentum_z, count };
+  std::vector<ExactSum> sum(count);
   const LocalId no = model.owned;
-  std::vector<GlobalId> egid(no);
-  std::vector<double> ek(no);
-  std::vector<std::vector<double>> lm(3, std::vector<double>(no, 0.0));
   for (LocalId le = 0; le < no; ++le) {
-    egid[le] = dm.element_gid(le);
-    ek[le] = element_kinetic(s, model, le);
-  }
-  std::vector<GlobalId> igid;
-  std::vector<double> ep;
-  const auto& ifs = dm.interfaces();
-  for (std::size_t i = 0; i < ifs.size(); ++i)
-    if (ifs[i].owned) igid.push_back(ifs[i].gid), ep.push_back(*s.penalty_energy.at(i));
-  StepRecord r;
-  r.step = s.step, r.time = s.time, r.dt = dt;
-  r.kinetic = ordered_sum(egid, ek, comm);
-  r.strain = ordered_sum(egid, owned_values(s.strain_energy, no), comm);
-  r.penalty = ordered_sum(igid, ep, comm);
-  r.external_work = ordered_sum(egid, owned_values(s.external_work, no), comm);
-  r.reaction_work = ordered_sum(egid, owned_values(s.reaction_work, no), comm);
-  r.damping = ordered_sum(egid, owned_values(s.damping_dissipation, no), comm);
-  r.plastic_work = ordered_sum(egid, owned_values(s.plastic_work, no), comm);
-  if (fracture.enabled()) fracture_accounts(s, model, fracture, egid, igid, r);
-  for (LocalId le = 0; le < no; ++le) {
+    sum[kinetic].add(element_kinetic(s, model, le));
+    sum[strain].add(*s.strain_energy.at(le));
+    sum[external].add(*s.external_work.at(le));
+    sum[reaction].add(*s.reaction_work.at(le));
+    sum[damping].add(*s.damping_dissipation.at(le));
+    sum[plastic].add(*s.plastic_work.at(le));
     double h[3] = {0, 0, 0};
     element_angular_momentum(s, model, le, h);
-    for (int c = 0; c < 3; ++c) lm[c][le] = h[c];
+    for (int c = 0; c < 3; ++c) sum[momentum_x + c].add(h[c]);
   }
-  for (int c = 0; c < 3; ++c) r.angular_momentum[c] = ordered_sum(egid, lm[c], comm);
+  const auto& ifs = model.dm.interfaces();
+  for (std::size_t i = 0; i < ifs.size(); ++i)
+    if (ifs[i].owned) sum[penalty].add(*s.penalty_energy.at(i));
+  if (fracture.enabled()) {
+    for (LocalId le = 0; le < no; ++le) sum[activation].add(*s.element_activation_loss.at(le));
+    for (std::size_t i = 0; i < ifs.size(); ++i) {
+      if (!ifs[i].owned) continue;
+      sum[cohesive_stored].add(*s.cohesive_energy.at(i)), sum[cohesive_lost].add(*s.cohesive_dissipation.at(i));
+      sum[activation].add(*s.interface_activation_loss.at(i));
+      if (s.mode[i] != intact) sum[cohesive_edges].add(1.0);
+      if (s.mode[i] == separated) sum[separated_edges].add(1.0);
+    }
+  }
+  ExactSum::allreduce(sum, model.dm.comm());
+  StepRecord r;
+  r.step = s.step, r.time = s.time, r.dt = dt;
+  r.kinetic = sum[kinetic].value(), r.strain = sum[strain].value(), r.penalty = sum[penalty].value();
+  r.external_work = sum[external].value(), r.reaction_work = sum[reaction].value();
+  r.damping = sum[damping].value(), r.plastic_work = sum[plastic].value();
+  r.cohesive_energy = sum[cohesive_stored].value(), r.cohesive_dissipation = sum[cohesive_lost].value();
+  r.activation_loss = sum[activation].value();
+  r.cohesive_edges = static_cast<GlobalId>(sum[cohesive_edges].value());
+  r.separated_edges = static_cast<GlobalId>(sum[separated_edges].value());
+  if (fracture.enabled()) r.fragments = fracture.fragments(s);
+  for (int c = 0; c < 3; ++c) r.angular_momentum[c] = sum[momentum_x + c].value();
   return r;
 }
 
@@ -124,33 +97,39 @@ double energy_balance_error(const StepRecord& r, double e0) {
 std::vector<double> probe_values(const ShellState& s, const ShellModel& model,
                                  const std::vector<std::vector<char>>& members) {
   const auto& dm = model.dm;
-  std::vector<double> out;
-  for (const auto& member : members) {
-    std::vector<GlobalId> ids;
-    std::vector<std::vector<double>> vals(6);
+  std::vector<ExactSum> sum(7 * members.size());  // per probe: displacement (3), velocity (3), copies
+  for (std::size_t p = 0; p < members.size(); ++p)
     for (LocalId le = 0; le < model.owned; ++le)
       for (int A = 0; A < 6; ++A) {
-        if (!member[dm.mesh_node(le, A)]) continue;
-        ids.push_back(dm.dg_node_gid(le, A));
+        if (!members[p][dm.mesh_node(le, A)]) continue;
         for (int c = 0; c < 3; ++c) {
-          vals[c].push_back(s.x.at(le, A)[c] - model.X.at(le, A)[c]);
-          vals[3 + c].push_back(s.v.at(le, A)[c]);
+          sum[7 * p + c].add(s.x.at(le, A)[c] - model.X.at(le, A)[c]);
+          sum[7 * p + 3 + c].add(s.v.at(le, A)[c]);
         }
+        sum[7 * p + 6].add(1.0);
       }
-    const double count = double(parallel::sum(static_cast<std::int64_t>(ids.size()), dm.comm()));
-    for (int c = 0; c < 6; ++c) out.push_back(count > 0 ? ordered_sum(ids, vals[c], dm.comm()) / count : 0.0);
+  ExactSum::allreduce(sum, dm.comm());
+  std::vector<double> out;
+  for (std::size_t p = 0; p < members.size(); ++p) {
+    const double copies = sum[7 * p + 6].value();
+    for (int c = 0; c < 6; ++c) out.push_back(copies > 0 ? sum[7 * p + c].value() / copies : 0.0);
   }
   return out;
 }
 
 std::vector<double> reaction_values(const ShellState& s, const ShellModel& model, const Constraints& constraints) {
-  std::vector<double> out;
+  std::vector<ExactSum> sum(6 * constraints.size());  // per condition: force (3), couple (3)
   Constraints::Contribution force, couple;
   for (std::size_t bc = 0; bc < constraints.size(); ++bc) {
     constraints.reaction_contributions(s, bc, force, couple);
-    for (int c = 0; c < 3; ++c) out.push_back(ordered_sum(force.ids, force.values[c], model.dm.comm()));
-    for (int c = 0; c < 3; ++c) out.push_back(ordered_sum(couple.ids, couple.values[c], model.dm.comm()));
+    for (int c = 0; c < 3; ++c) {
+      for (double v : force.values[c]) sum[6 * bc + c].add(v);
+      for (double v : couple.values[c]) sum[6 * bc + 3 + c].add(v);
+    }
   }
+  ExactSum::allreduce(sum, model.dm.comm());
+  std::vector<double> out;
+  for (const auto& x : sum) out.push_back(x.value());
   return out;
 }
 

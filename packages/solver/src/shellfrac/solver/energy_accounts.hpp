@@ -2,8 +2,8 @@
 /// \file energy_accounts.hpp
 /// The global quantities of a state that the history records (docs/theory.md §9.7, §11; docs/output.md):
 /// energies and work accounts, fracture counts, angular momentum, node-set probes and support reactions. Every
-/// sum runs over the contributions of all ranks in increasing global id, so it is bitwise independent of the
-/// rank count. The history row is built as (name, value) pairs, so its header and its values come from one list.
+/// sum is exact (ExactSum: one integer MPI_Allreduce per call, no gather), so it is bitwise independent of the
+/// rank count and of the order of the contributions. The history row is built as (name, value) pairs, so its header and its values come from one list.
 #include <mpi.h>
 
 #include <string>
@@ -36,10 +36,6 @@ struct StepRecord {
   GlobalId fragments = 1;           ///< connected pieces through edges that are not fully separated
   Vec3 angular_momentum{0, 0, 0};  ///< about the origin: sum m x × v + sum I t × tdot
 };
-
-/// Sum of values contributed by all ranks, in increasing id order (bitwise independent of the rank count).
-/// Collective.
-double ordered_sum(const std::vector<GlobalId>& ids, const std::vector<double>& values, MPI_Comm comm);
 
 /// The record of the current state. Collective.
 StepRecord step_record(const ShellState& s, const ShellModel& model, const Fracture& fracture, double dt);

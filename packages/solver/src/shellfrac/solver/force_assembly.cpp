@@ -212,9 +212,12 @@ void ForceAssembly::element_strains(const ShellState& s, LocalId le, PointStrain
   disc::ShellKinematics kin[nq];
   const disc::DgElementRef& R = model_.element_refs[le];
   disc::dg_kinematics(R, xe, te, lf, xn, tn, kin);
+  double eps[nq][3], gam[nq][2], rho[nq][3];
+  disc::dg_strains(R, kin, eps, gam, rho);
   for (int q = 0; q < nq; ++q) {
     out[q].weight = R.wj0[q];
-    disc::compute_strains(kin[q], R.ref[q], out[q].eps, out[q].gam, out[q].rho);
+    for (int c = 0; c < 3; ++c) out[q].eps[c] = eps[q][c], out[q].rho[c] = rho[q][c];
+    for (int c = 0; c < 2; ++c) out[q].gam[c] = gam[q][c];
   }
 }
 

@@ -23,6 +23,7 @@ void size_state(const ShellModel& model, ShellState& s) {
     for (int a = 0; a < 3; ++a) disc::copy3(dm.reference_director(le, a).data(), s.t.at(le, a));
   for (auto* rows : {&s.v, &s.a, &s.internal_force, &s.external_force, &s.reaction}) rows->assign(no);
   s.director_force.assign(no), s.rotation.assign(no), s.director_rate.assign(no), s.director_acceleration.assign(no);
+  s.external_director_force.assign(no);
   for (auto* rows : {&s.strain_energy, &s.external_work, &s.reaction_work, &s.damping_dissipation, &s.plastic_work,
                      &s.element_activation_loss})
     rows->assign(no);

@@ -15,9 +15,45 @@ std::string set_names(const Sets& sets) {
   for (const auto& s : sets) names += " '" + s.name + "'";
   return names;
 }
+
+/// The mean of an element's vertices.
+Vec3 vertex_centroid(const mesh::SerialMesh& m, GlobalId e) {
+  Vec3 c{0, 0, 0};
+  for (int a = 0; a < 3; ++a)
+    for (int k = 0; k < 3; ++k) c[k] += m.coords[m.node(e, a)][k] / 3;
+  return c;
+}
+
 }  // namespace
 
-MeshSets::MeshSets(const mesh::SerialMesh& mesh, std::string deck_file) : mesh_(mesh), file_(std::move(deck_file)) {}
+MeshSets::MeshSets(const mesh::SerialMesh& mesh, std::string deck_file, std::vector<Region> regions)
+    : mesh_(mesh), file_(std::move(deck_file)), regions_(std::move(regions)) {
+  for (const auto& r : regions_) {
+    const auto named = [&](const auto& sets) {
+      return std::any_of(sets.begin(), sets.end(), [&](const auto& s) { return s.name == r.name; });
+    };
+    SHELLFRAC_INPUT_REQUIRE(r.name != "all" && !named(mesh_.element_sets) && !named(mesh_.blocks) &&
+                                !named(mesh_.node_sets) && !named(mesh_.side_sets),
+                            file_ << ": region '" << r.name << "' has the name of a set or block of the mesh ("
+                                  << mesh_.source << "); rename the region");
+  }
+}
+
+const Region* MeshSets::region(const std::string& name) const {
+  for (const auto& r : regions_)
+    if (r.name == name) return &r;
+  return nullptr;
+}
+
+std::vector<MeshSets::RegionSize> MeshSets::region_sizes() const {
+  std::vector<RegionSize> out;
+  for (const auto& r : regions_) {
+    const auto count = [](const std::vector<char>& v) { return GlobalId(std::count(v.begin(), v.end(), 1)); };
+    out.push_back({r.name, count(elements("", r.name)), count(node_set("", r.name, false)),
+                   GlobalId(side_set("", r.name).size())});
+  }
+  return out;
+}
 
 std::vector<char> MeshSets::elements(const std::string& what, const std::string& name) const {
   std::vector<char> member(mesh_.num_elements(), 0);
@@ -34,6 +70,11 @@ std::vector<char> MeshSets::elements(const std::string& what, const std::string&
       for (GlobalId e = 0; e < mesh_.num_elements(); ++e)
         if (mesh_.element_block[e] == static_cast<int>(bl)) member[e] = 1;
     }
+  if (const Region* r = region(name)) {
+    found = true;
+    for (GlobalId e = 0; e < mesh_.num_elements(); ++e)
+      if (r->contains(vertex_centroid(mesh_, e))) member[e] = 1;
+  }
   SHELLFRAC_INPUT_REQUIRE(found, file_ << ": " << what << " names '" << name
                                        << "', which is neither 'all' nor an element set or block of the mesh ("
                                        << mesh_.source << "); its element sets:" << set_names(mesh_.element_sets)
@@ -52,6 +93,11 @@ std::vector<char> MeshSets::nodes_of_elements(const std::string& what, const std
 
 std::vector<char> MeshSets::node_set(const std::string& what, const std::string& name, bool allow_all) const {
   if (allow_all && name == "all") return std::vector<char>(mesh_.num_nodes(), 1);
+  if (const Region* r = region(name)) {
+    std::vector<char> member(mesh_.num_nodes(), 0);
+    for (GlobalId n = 0; n < mesh_.num_nodes(); ++n) member[n] = r->contains(mesh_.coords[n]) ? 1 : 0;
+    return member;
+  }
   const auto it = std::find_if(mesh_.node_sets.begin(), mesh_.node_sets.end(),
                                [&](const auto& ns) { return ns.name == name; });
   SHELLFRAC_INPUT_REQUIRE(it != mesh_.node_sets.end(),
@@ -64,6 +110,22 @@ std::vector<char> MeshSets::node_set(const std::string& what, const std::string&
 }
 
 std::set<std::pair<GlobalId, int>> MeshSets::side_set(const std::string& what, const std::string& name) const {
+  if (const Region* r = region(name)) {
+    std::set<std::pair<GlobalId, int>> edges;
+    for (GlobalId e = 0; e < mesh_.num_elements(); ++e)
+      for (int k = 0; k < 3; ++k) {
+        Vec3 mid;  // the mid-side node (TRI6), or the mean of the edge's vertices (TRI3)
+        if (mesh_.nodes_per_element == 6) {
+          mid = mesh_.coords[mesh_.node(e, 3 + k)];
+        } else {
+          for (int c = 0; c < 3; ++c)
+            mid[c] = 0.5 * (mesh_.coords[mesh_.node(e, edge_vertex[k][0])][c] +
+                            mesh_.coords[mesh_.node(e, edge_vertex[k][1])][c]);
+        }
+        if (r->contains(mid)) edges.insert({e, k});
+      }
+    return edges;
+  }
   const auto it = std::find_if(mesh_.side_sets.begin(), mesh_.side_sets.end(),
                                [&](const auto& ss) { return ss.name == name; });
   SHELLFRAC_INPUT_REQUIRE(it != mesh_.side_sets.end(),

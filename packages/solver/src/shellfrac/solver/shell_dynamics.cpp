@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
@@ -33,6 +34,19 @@ double choose_time_step(const TimeParams& tp, double stable_dt, const std::strin
   return tp.time_step;
 }
 
+/// Static relaxation settings: active once every ramp and load table has reached its end (never for an
+/// Exponential load).
+CentralDifference::Relaxation relaxation_settings(const Deck& deck) {
+  CentralDifference::Relaxation r;
+  r.enabled = deck.time.static_relaxation, r.tolerance = deck.time.relaxation_tolerance;
+  for (const auto& bc : deck.boundary_conditions) r.start = std::max(r.start, bc.ramp_time);
+  for (const auto& load : deck.loads) {
+    if (load.function == Load::Function::Table) r.start = std::max(r.start, load.times.back());
+    if (load.function == Load::Function::Exponential) r.start = std::numeric_limits<double>::infinity();
+  }
+  return r;
+}
+
 std::vector<std::string> block_names(const mesh::SerialMesh& mesh) {
   std::vector<std::string> names;
   for (const auto& b : mesh.blocks) names.push_back(b.name);
@@ -49,14 +63,15 @@ double vm_norm(const double X[3]) {
 struct ShellDynamics::Impl {
   Impl(const mesh::SerialMesh& mesh, const decomposition::DistributedMesh& dm, const Deck& deck)
       : file(deck.file),
-        sets(mesh, deck.file),
+        sets(mesh, deck.file, deck.regions),
         model(dm, deck, block_sections(deck, block_names(mesh))),
         dt(choose_time_step(deck.time, model.stable_dt, deck.file)),
         fracture(deck.fracture, sets, model),
         constraints(deck.boundary_conditions, sets, dm, deck.file),
-        loads(deck.loads, sets, model),
+        loads(deck.loads, sets, mesh, model),
         assembly(model, fracture.enabled(), times),
-        integrator(model, constraints, loads, assembly, fracture, times, deck.time.mass_damping) {
+        integrator(model, constraints, loads, assembly, fracture, times, deck.time.mass_damping,
+                   relaxation_settings(deck)) {
     set_initial_state(deck.initial_velocities, sets, model, constraints, state);
     integrator.start(state);
   }
@@ -84,6 +99,8 @@ long ShellDynamics::step_count() const { return impl_->state.step; }
 void ShellDynamics::step() { impl_->integrator.step(impl_->state, impl_->dt); }
 const PhaseTimes& ShellDynamics::phase_times() const { return impl_->times; }
 bool ShellDynamics::fracture() const { return impl_->fracture.enabled(); }
+bool ShellDynamics::relaxed() const { return impl_->integrator.relaxed(); }
+double ShellDynamics::relaxation_residual() const { return impl_->integrator.relaxation_residual(); }
 const ShellState& ShellDynamics::state() const { return impl_->state; }
 const ShellModel& ShellDynamics::model() const { return impl_->model; }
 

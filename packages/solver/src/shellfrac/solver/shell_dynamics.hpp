@@ -77,6 +77,10 @@ class ShellDynamics {
   void restore(const io::CheckpointData& data);
   /// Whether any edge of the mesh may break (Fracture; the same on every rank).
   bool fracture() const;
+  /// Static Relaxation: whether the static equilibrium has been reached, and the last relative residual (NaN
+  /// before the loads and prescribed motions reached their final values).
+  bool relaxed() const;
+  double relaxation_residual() const;
   /// One row per fragment (Fracture::fragment_table). Collective.
   std::vector<std::vector<double>> fragment_table() const;
   /// The crack log since the last call (Fracture::crack_events). Collective.

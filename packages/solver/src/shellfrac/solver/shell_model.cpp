@@ -75,7 +75,7 @@ ShellModel::ShellModel(const decomposition::DistributedMesh& d, const Deck& deck
       lifted[le][k] = nb >= 0 && !not_lifted.count({le, k});
       same[k] = nb >= 0 && same_edge_direction(dm, le, k, nb, dm.neighbor_edge(le, k));
     }
-    disc::build_dg_element_ref(Xe, Te, same, element_refs[le]);
+    disc::build_dg_element_ref(Xe, Te, same, element_refs[le], deck.discretization.project_membrane);
     const BlockSection& sc = sections.at(dm.element_block(le));
     const auto& m = sc.material;
     const double h = sc.thickness;

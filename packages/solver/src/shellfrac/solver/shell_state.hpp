@@ -75,6 +75,7 @@ struct ShellState {
   PositionRows internal_force;   ///< f: internal forces on the position nodes
   DirectorRows director_force;   ///< g: spatial internal director moments
   PositionRows external_force;   ///< f_ext at the current time
+  DirectorRows external_director_force;  ///< g_ext: external director forces (edge moments) at the current time
   PositionRows reaction;         ///< support reactions R = m a - f_ext + f on constrained components
   Scalars strain_energy;         ///< U_el per element (frozen plastic strains)
   Scalars external_work, reaction_work, damping_dissipation;  ///< accumulated work accounts per element
@@ -100,7 +101,7 @@ struct ShellState {
     visit("director_acceleration", s.director_acceleration), visit("strain_energy", s.strain_energy);
     visit("external_work", s.external_work), visit("reaction_work", s.reaction_work);
     visit("damping_dissipation", s.damping_dissipation), visit("plastic_work", s.plastic_work);
-    visit("activation_loss", s.element_activation_loss);
+    visit("activation_loss", s.element_activation_loss), visit("gext", s.external_director_force);
   }
   /// The same for the interface fields (mode is a std::vector<int>).
   template <class State, class Visit>

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <csignal>
+#include <iostream>
 #include <sstream>
 
 #include "shellfrac/core/error.hpp"
@@ -13,6 +15,7 @@
 #include "shellfrac/mesh/edge_topology.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
 #include "shellfrac/solver/mesh_sets.hpp"
+#include "shellfrac/solver/progress.hpp"
 #include "shellfrac/solver/run_outputs.hpp"
 #include "shellfrac/solver/shell_dynamics.hpp"
 
@@ -56,30 +59,56 @@ class OutputSchedule {
   double interval_, next_;
 };
 
-/// Checkpoints every Step Interval steps, every Wall Interval minutes (any rank's clock decides), at SIGUSR1; SIGTERM writes one and stops the run. A signal seen by any rank counts for all.
-class CheckpointPolicy {
+enum class CheckpointAction { none, write, write_and_stop };
+
+/// What the signals and the wall clock ask for after a step, agreed by all ranks with one reduction: a checkpoint
+/// every Step Interval steps, every Wall Interval minutes (any rank's clock decides) and at SIGUSR1; a checkpoint
+/// and a stop at SIGTERM (a signal seen by any rank counts for all); a progress line when it is due.
+class StepEvents {
  public:
-  enum class Action { none, write, write_and_stop };
-  CheckpointPolicy(const CheckpointParams& p, MPI_Comm comm)
-      : params_(p), comm_(comm), last_(std::chrono::steady_clock::now()) {}
-  /// After step `step`: what to do (one reduction). Collective.
-  Action after_step(long step) {
+  StepEvents(const CheckpointParams& p, ProgressReport& progress, MPI_Comm comm)
+      : params_(p), progress_(progress), comm_(comm), last_(std::chrono::steady_clock::now()) {}
+  struct Due {
+    CheckpointAction checkpoint;
+    bool progress;
+  };
+  /// After step `step`. Collective.
+  Due after_step(long step) {
     const auto now = std::chrono::steady_clock::now();
     const bool wall_due =
         params_.wall_minutes > 0 && std::chrono::duration<double>(now - last_).count() >= 60 * params_.wall_minutes;
-    // One reduction: 2 x signal + wall flag.
-    const int code = static_cast<int>(parallel::max(double(2 * received_signal + (wall_due ? 1 : 0)), comm_));
-    if (!((params_.step_interval > 0 && step % params_.step_interval == 0) || code != 0)) return Action::none;
+    int mine[3] = {static_cast<int>(received_signal), wall_due ? 1 : 0, progress_.due() ? 1 : 0}, all[3];
+    SHELLFRAC_REQUIRE(MPI_Allreduce(mine, all, 3, MPI_INT, MPI_MAX, comm_) == MPI_SUCCESS,
+                      "MPI_Allreduce of the step events failed");
+    const int signal = all[0];
+    Due due{CheckpointAction::none, all[2] != 0};
+    if (!((params_.step_interval > 0 && step % params_.step_interval == 0) || signal != 0 || all[1] != 0)) return due;
     last_ = now;
-    if (code / 2 == SIGUSR1) received_signal = 0;
-    return code / 2 == SIGTERM ? Action::write_and_stop : Action::write;
+    if (signal == SIGUSR1) received_signal = 0;
+    due.checkpoint = signal == SIGTERM ? CheckpointAction::write_and_stop : CheckpointAction::write;
+    return due;
   }
 
  private:
   const CheckpointParams& params_;
+  ProgressReport& progress_;
   MPI_Comm comm_;
   std::chrono::steady_clock::time_point last_;
 };
+
+/// Estimated size of the results of a run of `steps` steps from time t on `elements` elements [bytes]: the Exodus
+/// frames (coordinates and connectivity of the DG copies once, then per frame three nodal vectors per DG node and
+/// the element fields), and the history rows as text.
+double estimated_result_bytes(const Deck& deck, GlobalId elements, long steps, double t) {
+  const auto& tp = deck.time;
+  const double frames = (tp.output_interval > 0 ? std::floor((tp.end_time - t) / tp.output_interval) : 0) + 2;
+  const double dg_nodes = 6.0 * double(elements);
+  const double fixed = dg_nodes * 3 * 8 + dg_nodes * 4;
+  const double per_frame = dg_nodes * 9 * 8 + double(elements) * (ShellDynamics::element_field_names().size() + 2) * 8;
+  const double columns = 30 + 6 * double(deck.output.probes.size() + deck.boundary_conditions.size());
+  const double rows = double(steps) / tp.history_interval + 2;
+  return fixed + frames * per_frame + rows * columns * 16;
+}
 
 }  // namespace
 
@@ -87,6 +116,7 @@ Simulation::Simulation(const std::string& deck_file, MPI_Comm comm, const std::s
     : comm_(comm), deck_(Deck::read(deck_file, comm)) {
   if (!restart_file.empty()) deck_.checkpoint.restart_from = restart_file;
   model_ = build_run_model(deck_, comm);
+  progress_interval_ = deck_.output.progress_interval;
   if (!deck_.checkpoint.restart_from.empty()) restart_from_checkpoint();
   resolve_probes();
   summarize();
@@ -106,7 +136,8 @@ void Simulation::restart_from_checkpoint() {
 }
 
 void Simulation::resolve_probes() {
-  const MeshSets sets(*model_.mesh, deck_.file);
+  const MeshSets sets(*model_.mesh, deck_.file, deck_.regions);
+  summary_.regions = sets.region_sizes();
   for (const auto& name : deck_.output.probes) {
     probe_members_.push_back(sets.node_set("'Output->Probes'", name, false));
     probe_names_.push_back(name);
@@ -155,7 +186,11 @@ RunSummary Simulation::run() {
   const auto start = std::chrono::steady_clock::now();
   bool frame_written = true, history_written = true;
   const SignalGuard signals;
-  CheckpointPolicy checkpoints(deck_.checkpoint, comm_);
+  ProgressReport progress(parallel::rank(comm_) == 0 ? &std::cout : nullptr, progress_interval_, dyn.step_count(),
+                          dyn.time(), tp.end_time, dyn.time_step(), dyn.fracture());
+  const long planned = std::lround(std::ceil((tp.end_time - dyn.time()) / dyn.time_step() - 0.5));
+  progress.plan(estimated_result_bytes(deck_, summary_.elements, planned, dyn.time()));
+  StepEvents events(deck_.checkpoint, progress, comm_);
   // The last good state: a copy of the state every 50 steps, written as the checkpoint if the run blows up.
   io::CheckpointData last_good = dyn.checkpoint();
   // Stop when the next step would overshoot the end time by more than half a step.
@@ -175,13 +210,17 @@ RunSummary Simulation::run() {
     if (history_written) out.write_history();
     frame_written = frames.due(dyn.time(), dyn.time_step());
     if (frame_written) out.write_frame(), frames.pass(dyn.time(), dyn.time_step());
-    const auto action = checkpoints.after_step(dyn.step_count());
-    if (action != CheckpointPolicy::Action::none) out.write_checkpoint(checkpoint_path());
-    if (action == CheckpointPolicy::Action::write_and_stop) {
+    const auto due = events.after_step(dyn.step_count());
+    if (due.progress) progress.print(dyn.record(), e0);
+    if (due.checkpoint != CheckpointAction::none) out.write_checkpoint(checkpoint_path());
+    if (due.checkpoint == CheckpointAction::write_and_stop) {
       summary_.stopped_by_signal = true;
       break;
     }
+    if (dyn.relaxed()) break;  // the static state (Static Relaxation)
   }
+  summary_.static_relaxation = deck_.time.static_relaxation;
+  summary_.relaxed = dyn.relaxed(), summary_.residual = dyn.relaxation_residual();
   if (!history_written) out.write_history();
   if (!frame_written) out.write_frame();
   const bool checkpointing = deck_.checkpoint.step_interval > 0 || deck_.checkpoint.wall_minutes > 0;

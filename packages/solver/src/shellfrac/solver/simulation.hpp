@@ -10,6 +10,7 @@
 
 #include "shellfrac/core/types.hpp"
 #include "shellfrac/solver/deck.hpp"
+#include "shellfrac/solver/mesh_sets.hpp"
 #include "shellfrac/solver/model_setup.hpp"
 
 namespace shellfrac::solver {
@@ -24,6 +25,10 @@ struct RunSummary {
   std::vector<std::string> files;  ///< output files written (rank 0's view: base names)
   long restart_step = -1;          ///< the step the run restarted from (-1: started at t = 0)
   bool stopped_by_signal = false;  ///< SIGTERM: a checkpoint was written and the run stopped early
+  std::vector<MeshSets::RegionSize> regions;  ///< the deck's regions and their sizes
+  bool static_relaxation = false;  ///< the deck asked for the static state (Static Relaxation)
+  bool relaxed = false;            ///< ... and the run reached it before End Time
+  double residual = 0;             ///< the last relative residual of the static relaxation
 };
 
 /// A run. Construction does all the input work (collective); run() writes the outputs.
@@ -35,6 +40,8 @@ class Simulation {
   /// Writes step 0, then (End Time > 0) integrates in time, writing Exodus at the output interval and the
   /// history every History Interval steps. Returns the summary. Collective.
   RunSummary run();
+  /// No progress lines (shellfrac --quiet), whatever Output->Progress Interval says.
+  void set_quiet() { progress_interval_ = 0; }
   const Deck& deck() const { return deck_; }
   const RunSummary& summary() const { return summary_; }
   /// Path of the Exodus results (the per-rank set's base name when np > 1).
@@ -59,6 +66,7 @@ class Simulation {
   std::vector<std::vector<char>> probe_members_;
   RunSummary summary_;
   double restart_e0_ = 0;  ///< initial energy of the restarted run (for the balance error)
+  double progress_interval_ = 10;  ///< seconds between progress lines (Output->Progress Interval; 0 = none)
 };
 
 }  // namespace shellfrac::solver
