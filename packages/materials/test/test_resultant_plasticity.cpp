@@ -734,7 +734,7 @@ TEST(ResultantPlasticity, ClosestPointNormalityAndMinimality) {
 // for trial 4 it printed N = [-354763.03115988977, 30338.514014386077, -286763.17128976714] (3.6e-10 off, yield
 // residual 4.08e-10): its Newton loop replaced an exact root g(z) = 0 by the bracket midpoint (a strict
 // bracket test, theory.md §4.3), which this implementation avoids.
-TEST(ResultantPlasticity, ReproducesPrototypeTrials) {
+TEST(ResultantPlasticity, ReproducesReferenceTrials) {
   const PlasticSection s = tearing();
   struct Trial {
     double eps[3], kap[3], alpha_n;
@@ -785,7 +785,7 @@ TEST(ResultantPlasticity, ReproducesPrototypeTrials) {
     EXPECT_LE(diff3(M, t.M), 1e-12 * norm3(t.M));
     EXPECT_NEAR(next.alpha, t.alpha, 1e-12 * t.alpha);
   }
-  stats.print("prototype trials");
+  stats.print("reference trials");
 }
 
 // (Test 7) Robustness: trial overstress factors f = sigma_eq(trial)/sigma_y(alpha_n) = 1 + 1e-14, 1 + 1e-10, 1.5, 1e3,
