@@ -6,7 +6,7 @@
 //   shellfrac --help | --version
 // Exit codes: 0 success, 1 input error (message names the file and parameter), 2 usage error,
 // 3 internal error (all ranks aborted), 4 stopped by SIGTERM after a checkpoint, 5 Static Relaxation not
-// reached by End Time (results written).
+// reached by End Time (results written), 6 a result file could not be written (named in the message).
 #include <mpi.h>
 
 #include <Tpetra_Core.hpp>
@@ -42,7 +42,7 @@ const char* usage =
     "Signals: SIGUSR1 writes a checkpoint and continues; SIGTERM writes a checkpoint and the last results, then\n"
     "stops with exit code 4 (restart with --restart). Exit codes: 0 done, 1 input error, 2 usage error,\n"
     "3 internal error or numerical blow-up, 4 stopped by SIGTERM after a checkpoint, 5 static equilibrium\n"
-    "(Static Relaxation) not reached by End Time.\n";
+    "(Static Relaxation) not reached by End Time, 6 a result file could not be written (disk full?).\n";
 
 int run(int argc, char** argv) {
   const bool root = shellfrac::parallel::rank() == 0;
@@ -106,6 +106,14 @@ int run(int argc, char** argv) {
               << "  partition: " << s.min_owned << ".." << s.max_owned << " elements and " << s.min_ghosts << ".."
               << s.max_ghosts << " ghosts per rank\n"
               << "  time step: " << s.dt << " (stable estimate " << s.stable_dt << ", docs/theory.md §8)\n";
+    if (s.mass_scaling.elements > 0) {
+      const auto& ms = s.mass_scaling;
+      std::cout << "  mass scaling: " << ms.elements << " of " << s.elements << " elements scaled to reach the time "
+                << "step; added mass " << ms.added_mass << " = " << 100 * ms.added_mass / ms.physical_mass
+                << " % of " << ms.physical_mass << "; largest density factor " << ms.max_factor << " at element "
+                << ms.max_element + 1 << " (centroid " << ms.max_centroid[0] << ", " << ms.max_centroid[1] << ", "
+                << ms.max_centroid[2] << ")\n";
+    }
     for (const auto& r : s.regions)
       std::cout << "  region '" << r.name << "': " << r.elements << " elements, " << r.nodes << " nodes, " << r.edges
                 << " edges\n";

@@ -130,6 +130,20 @@ class Shellfrac(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertNotIn("ETA", r.stdout)
 
+    def test_a_failed_history_write_stops_the_run_with_exit_6(self):
+        # The history file is a link to /dev/full (every write fails with ENOSPC): the run used to print
+        # "wrote run_history.csv" and exit 0.
+        if not os.path.exists("/dev/full"):
+            self.skipTest("no /dev/full")
+        deck = self.deck("full.xml")
+        os.symlink("/dev/full", os.path.join(self.dir, "full_history.csv"))
+        for np in (None, 2):
+            r = run([SHELLFRAC, deck], cwd=self.dir, np=np)
+            self.assertEqual(r.returncode, 6, r.stdout + r.stderr)
+            self.assertIn("full_history.csv: writing the header failed", r.stderr)
+            self.assertEqual(r.stderr.count("error:"), 1, r.stderr)  # printed once, by rank 0
+            self.assertNotIn("wrote", r.stdout)
+
     def test_sigterm_writes_a_checkpoint_and_the_run_restarts_from_it(self):
         # Issue #6: SIGTERM (a batch system's warning) leaves a readable checkpoint and Exodus file and exit
         # code 4; --restart continues from it.

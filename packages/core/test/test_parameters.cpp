@@ -131,6 +131,10 @@ TEST(Parameters, NumbersMustBeWholeNumbersOfTheirType) {
       {"int", "+-5", "the value '+-5' is not an integer"},
       {"Array(double)", "{0.0, x, 1.0}", "(type Array(double)): the element 'x' of '{0.0, x, 1.0}' is not a number"},
       {"Array(int)", "{1, 2.5}", "the element '2.5' of '{1, 2.5}' is not an integer"},
+      // A non-finite array element used to pass (no validator sees array elements) and act as 0.
+      {"Array(double)", "{0, 0, nan}", "the element 'nan' of '{0, 0, nan}' is not a finite number"},
+      {"Array(double)", "{inf}", "the element 'inf' of '{inf}' is not a finite number"},
+      {"Array(double)", "{1, -Infinity, 2}", "the element '-Infinity' of '{1, -Infinity, 2}' is not a finite number"},
   };
   for (const auto& c : cases) {
     {

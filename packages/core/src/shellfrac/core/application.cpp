@@ -18,6 +18,10 @@ int run_guarded(const char* program_name, const std::function<int()>& body) {
     // Input errors are detected collectively: every rank has the same message and exits normally.
     if (parallel::rank() == 0) std::cerr << program_name << ": error: " << e.what() << "\n";
     return 1;
+  } catch (const OutputError& e) {
+    // Output errors are agreed by all ranks too (the writer checks every write).
+    if (parallel::rank() == 0) std::cerr << program_name << ": error: " << e.what() << "\n";
+    return 6;
   } catch (const std::exception& e) {
     std::cerr << program_name << ": internal error on rank " << parallel::rank() << ": " << e.what() << "\n";
     std::fflush(stderr);

@@ -24,6 +24,13 @@ class NumericalError : public Error {
   using Error::Error;
 };
 
+/// Writing a result file failed (a full disk, a quota, a removed directory): the file is named. Thrown on every
+/// rank at once; the program stops with its own exit code (6).
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 /// A problem with the user's input: deck, mesh file, parameter value.
 class InputError : public std::runtime_error {
  public:

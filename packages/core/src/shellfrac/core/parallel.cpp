@@ -52,6 +52,9 @@ int run_capturing(const std::function<void()>& fn, std::string& msg) {
   } catch (const InputError& e) {
     msg = e.what();
     return 1;
+  } catch (const OutputError& e) {
+    msg = e.what();
+    return 3;
   } catch (const std::exception& e) {
     msg = e.what();
     return 2;
@@ -60,6 +63,7 @@ int run_capturing(const std::function<void()>& fn, std::string& msg) {
 
 [[noreturn]] void rethrow(int kind, const std::string& msg) {
   if (kind == 1) throw InputError(msg);
+  if (kind == 3) throw OutputError(msg);
   throw Error(msg);
 }
 }  // namespace

@@ -86,7 +86,7 @@ void broadcast_vector(std::vector<T>& v, int root = 0, MPI_Comm comm = MPI_COMM_
   if (rank(comm) != root) v = ByteReader(w.buffer()).get_vector<T>();
 }
 
-/// Runs fn on root only. If it throws, every rank throws the same kind of exception (InputError or Error)
+/// Runs fn on root only. If it throws, every rank throws the same kind of exception (InputError, OutputError or Error)
 /// with the same message, so that all ranks agree and none hangs. Collective.
 void on_root_then_agree(const std::function<void()>& fn, int root = 0, MPI_Comm comm = MPI_COMM_WORLD);
 

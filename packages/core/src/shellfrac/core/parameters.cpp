@@ -147,6 +147,10 @@ bool is_real(const std::string& text) {
   return *end == '\0' && !(errno == ERANGE && std::isinf(v));
 }
 
+/// True if `text` is a number (is_real) and finite: no array has a validator that could reject nan or inf, so
+/// every element of a numeric array must be finite.
+bool is_finite_real(const std::string& text) { return is_real(text) && std::isfinite(std::strtod(text.c_str(), nullptr)); }
+
 /// Teuchos converts numbers without checking that the whole text was used, keeping whatever prefix it could
 /// read: "0.01mm" is 0.01, "zero point three" is 0, "10.7" as an int is 10, "99999999999999" as an int is
 /// 276447231, and "{0, x, 1}" is {0, 0, 1}, all without an error. This walk of the XML checks that every
@@ -164,7 +168,8 @@ void check_numbers(const Teuchos::XMLObject& xml, const std::string& file, const
     std::string type = child.getAttribute("type");
     const std::string& value = child.getAttribute("value");
     std::vector<std::string> items{value};
-    if (type.rfind("Array(", 0) == 0 && type.back() == ')') {  // "{a, b, c}"; Teuchos checks the braces
+    const bool is_array = type.rfind("Array(", 0) == 0 && type.back() == ')';
+    if (is_array) {  // "{a, b, c}"; Teuchos checks the braces
       type = type.substr(6, type.size() - 7);
       items.clear();
       const auto open = value.find('{'), close = value.rfind('}');
@@ -187,6 +192,8 @@ void check_numbers(const Teuchos::XMLObject& xml, const std::string& file, const
         what = "a 64-bit integer";
       else if ((type == "double" || type == "float") && !is_real(item))
         what = "a number";
+      else if ((type == "double" || type == "float") && is_array && !is_finite_real(item))
+        what = "a finite number (array elements must be finite)";
       if (what != nullptr) {
         std::ostringstream os;
         os << file << ": parameter '" << child_path << "' (type " << child.getAttribute("type") << "): ";

@@ -12,13 +12,14 @@
 namespace shellfrac::io {
 
 HistoryWriter::HistoryWriter(const std::string& path, const std::vector<std::string>& columns, MPI_Comm comm)
-    : columns_(columns), root_(parallel::rank(comm) == 0) {
+    : columns_(columns), path_(path), comm_(comm) {
   parallel::on_root_then_agree(
       [&] {
         out_.open(path, std::ios::trunc);
-        SHELLFRAC_REQUIRE(out_.good(), path << ": cannot create the history file");
+        if (!out_) throw OutputError(path + ": cannot create the file");
         for (std::size_t i = 0; i < columns_.size(); ++i) out_ << (i ? "," : "") << columns_[i];
         out_ << '\n' << std::flush;
+        if (!out_) throw OutputError(path + ": writing the header failed (disk full?)");
         out_ << std::setprecision(std::numeric_limits<double>::max_digits10);
       },
       0, comm);
@@ -26,7 +27,7 @@ HistoryWriter::HistoryWriter(const std::string& path, const std::vector<std::str
 
 HistoryWriter::HistoryWriter(const std::string& path, const std::vector<std::string>& columns, double keep_through,
                              MPI_Comm comm)
-    : columns_(columns), root_(parallel::rank(comm) == 0) {
+    : columns_(columns), path_(path), comm_(comm) {
   parallel::on_root_then_agree(
       [&] {
         std::ifstream in(path);
@@ -59,9 +60,13 @@ HistoryWriter::HistoryWriter(const std::string& path, const std::vector<std::str
 void HistoryWriter::write_row(const std::vector<double>& values) {
   SHELLFRAC_REQUIRE(values.size() == columns_.size(),
                     "history row has " << values.size() << " values for " << columns_.size() << " columns");
-  if (!root_) return;
-  for (std::size_t i = 0; i < values.size(); ++i) out_ << (i ? "," : "") << values[i];
-  out_ << '\n' << std::flush;
+  parallel::on_root_then_agree(
+      [&] {
+        for (std::size_t i = 0; i < values.size(); ++i) out_ << (i ? "," : "") << values[i];
+        out_ << '\n' << std::flush;
+        if (!out_) throw OutputError(path_ + ": writing a row failed (disk full or file removed?); the run stops");
+      },
+      0, comm_);
 }
 
 }  // namespace shellfrac::io

@@ -21,14 +21,16 @@ class HistoryWriter {
   /// value is <= keep_through, drops the others, and appends after them. InputError naming the file if it is
   /// missing or has other columns. Collective.
   HistoryWriter(const std::string& path, const std::vector<std::string>& columns, double keep_through, MPI_Comm comm);
-  /// Appends a row; values.size() must equal the number of columns. Only rank 0's values are used.
+  /// Appends a row; values.size() must equal the number of columns. Only rank 0's values are used. A failed
+  /// write (checked after each row) throws OutputError naming the file on every rank. Collective.
   void write_row(const std::vector<double>& values);
   const std::vector<std::string>& columns() const { return columns_; }
 
  private:
   std::vector<std::string> columns_;
+  std::string path_;
+  MPI_Comm comm_;
   std::ofstream out_;
-  bool root_ = false;
 };
 
 }  // namespace shellfrac::io

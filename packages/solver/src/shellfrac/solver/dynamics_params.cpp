@@ -35,6 +35,15 @@ Teuchos::RCP<const Teuchos::ParameterList> TimeParams::valid_parameters() {
           params::double_range(0.0, 1.0, true, false));
   pl->set("Time Step", 0.0, "Fixed time step [time]; 0 = Safety Factor x stable estimate", params::non_negative_double());
   pl->set("Force Time Step", false, "Run with a fixed Time Step even if it exceeds the stable estimate");
+  pl->set("Target Time Step", 0.0,
+          "Selective mass scaling (theory.md §8.1): the density of every element whose stable step (times the "
+          "Safety Factor) is below this step is multiplied by the factor that brings it there, and the run uses "
+          "this step; the added mass is reported. 0 = no mass scaling. Not together with Time Step",
+          params::non_negative_double());
+  pl->set("Maximum Added Mass Fraction", 0.05,
+          "Target Time Step: the run is refused if the added mass exceeds this fraction of the total mass",
+          params::non_negative_double());
+  pl->set("Force Mass Scaling", false, "Target Time Step: accept any added mass");
   pl->set("Rotary Inertia Scale", 1.0, "s_I >= 1 multiplies the rotary inertia rho h^3/12 (raises the stable step of "
                                        "thin shells; changes the dynamics; reported when used)",
           params::double_range(1.0, 1e6));
@@ -62,6 +71,12 @@ TimeParams TimeParams::from_parameters(Teuchos::ParameterList& pl, const params:
   t.safety_factor = pl.get<double>("Safety Factor");
   t.time_step = pl.get<double>("Time Step");
   t.force_time_step = pl.get<bool>("Force Time Step");
+  t.target_time_step = pl.get<double>("Target Time Step");
+  t.max_added_mass_fraction = pl.get<double>("Maximum Added Mass Fraction");
+  t.force_mass_scaling = pl.get<bool>("Force Mass Scaling");
+  SHELLFRAC_INPUT_REQUIRE(t.target_time_step == 0 || t.time_step == 0,
+                          ctx.file << ": '" << ctx.path << "': give either a Time Step or a Target Time Step (mass "
+                                   << "scaling), not both");
   t.rotary_inertia_scale = pl.get<double>("Rotary Inertia Scale");
   t.output_interval = pl.get<double>("Output Interval");
   t.history_interval = pl.get<int>("History Interval");

@@ -25,6 +25,9 @@ struct TimeParams {
   double safety_factor = 0.8;    ///< S_f applied to the element-by-element stable estimate
   double time_step = 0.0;        ///< fixed Delta t; 0 = S_f x stable estimate
   bool force_time_step = false;  ///< allow a fixed Delta t above the stable estimate
+  double target_time_step = 0.0;  ///< selective mass scaling to this Delta t (theory.md §8.1); 0 = none
+  double max_added_mass_fraction = 0.05;  ///< refuse mass scaling that adds more (unless forced)
+  bool force_mass_scaling = false;        ///< accept any added mass
   double rotary_inertia_scale = 1.0;  ///< s_I >= 1 scales the rotary inertia rho h^3/12 (mass scaling)
   double output_interval = 0.0;  ///< time between Exodus outputs; 0 = first and last step only
   int history_interval = 1;      ///< steps between history rows

@@ -1,9 +1,12 @@
 #include "shellfrac/solver/shell_model.hpp"
 
+#include <cmath>
+#include <cstdint>
 #include <limits>
 #include <set>
 
 #include "shellfrac/core/error.hpp"
+#include "shellfrac/core/exact_sum.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/disc/lumped_mass.hpp"
 #include "shellfrac/disc/stable_time_step.hpp"
@@ -26,6 +29,69 @@ void reference_nodes(const decomposition::DistributedMesh& dm, LocalId le, doubl
 /// (the matched edge parameter is then s, else 1 - s).
 bool same_edge_direction(const decomposition::DistributedMesh& dm, LocalId le, int k, LocalId nb, int kk) {
   return dm.mesh_node(le, disc::edge_node(k, 0)) == dm.mesh_node(nb, disc::edge_node(kk, 0));
+}
+
+/// The density factor of an element with stable step dt_e (before the safety factor): 1, or the factor that
+/// brings S_f dt_e up to the target step (theory.md §8.1), with a margin of 1e-12 so that the scaled step is not
+/// below the target by round-off. The run's step S_f min(scaled dt_e) is then the target (or more, if no
+/// element needed scaling).
+double density_factor(const TimeParams& tp, double dt_e) {
+  const double reached = tp.safety_factor * dt_e;
+  if (tp.target_time_step <= 0 || reached >= tp.target_time_step) return 1.0;
+  const double r = tp.target_time_step / reached;
+  return r * r * (1 + 1e-12);
+}
+
+/// The owned elements' share of the mass scaling, summed over the ranks at the end.
+class MassScalingTally {
+ public:
+  /// Element le with the (unscaled) lumped masses `masses` gets the density factor `factor`.
+  void add(LocalId le, double factor, const double* masses) {
+    for (int A = 0; A < position_nodes; ++A) physical_.add(masses[A]);
+    if (factor == 1.0) return;
+    for (int A = 0; A < position_nodes; ++A) added_.add((factor - 1) * masses[A]);
+    ++elements_;
+    if (factor > max_factor_) max_factor_ = factor, max_le_ = le;
+  }
+  MassScaling global_result(const decomposition::DistributedMesh& dm) {
+    std::vector<ExactSum> sums{physical_, added_};
+    ExactSum::allreduce(sums, dm.comm());
+    MassScaling r;
+    r.physical_mass = sums[0].value(), r.added_mass = sums[1].value();
+    r.elements = parallel::sum(elements_, dm.comm());
+    r.max_factor = parallel::max(max_factor_, dm.comm());
+    const bool mine = max_le_ >= 0 && max_factor_ == r.max_factor;
+    const double gid = mine ? double(dm.element_gid(max_le_)) : std::numeric_limits<double>::max();
+    r.max_element = r.elements > 0 ? static_cast<GlobalId>(-parallel::max(-gid, dm.comm())) : -1;
+    double c[3] = {0, 0, 0}, all[3];
+    if (mine && dm.element_gid(max_le_) == r.max_element)
+      for (int A = 0; A < 3; ++A)
+        for (int k = 0; k < 3; ++k) c[k] += dm.node_coords(max_le_, A)[k] / 3;
+    SHELLFRAC_REQUIRE(MPI_Allreduce(c, all, 3, MPI_DOUBLE, MPI_SUM, dm.comm()) == MPI_SUCCESS,
+                      "MPI_Allreduce of the mass scaling failed");  // one rank contributes, the others add 0
+    r.max_centroid = {all[0], all[1], all[2]};
+    return r;
+  }
+
+ private:
+  ExactSum physical_, added_;
+  std::int64_t elements_ = 0;
+  double max_factor_ = 1;
+  LocalId max_le_ = -1;
+};
+
+/// InputError if the mass scaling adds more than Maximum Added Mass Fraction of the mass (unless forced).
+void check_added_mass(const Deck& deck, const MassScaling& ms) {
+  if (ms.elements == 0 || deck.time.force_mass_scaling) return;
+  const double fraction = ms.added_mass / ms.physical_mass;
+  SHELLFRAC_INPUT_REQUIRE(fraction <= deck.time.max_added_mass_fraction,
+                          deck.file << ": 'Time Integration->Target Time Step' = " << deck.time.target_time_step
+                                    << " adds " << fraction * 100 << " % of the mass (" << ms.elements
+                                    << " elements scaled, the largest factor " << ms.max_factor << " at element "
+                                    << ms.max_element + 1 << "), more than 'Maximum Added Mass Fraction' = "
+                                    << deck.time.max_added_mass_fraction
+                                    << "; lower the target, remesh the small elements, or raise the maximum (or "
+                                       "set 'Force Mass Scaling')");
 }
 
 }  // namespace
@@ -62,8 +128,9 @@ ShellModel::ShellModel(const decomposition::DistributedMesh& d, const Deck& deck
   std::set<std::pair<LocalId, int>> not_lifted;
   for (const auto& fc : dm.interfaces())
     if (fc.non_manifold) not_lifted.insert({fc.minus, fc.minus_edge}), not_lifted.insert({fc.plus, fc.plus_edge});
-  // Element reference data, lifted edges, masses, the stable step.
+  // Element reference data, lifted edges, masses (selectively scaled), the stable step.
   element_refs.resize(owned), lifted.resize(owned), mass.assign(owned), inertia.assign(owned);
+  MassScalingTally scaling;
   const double rotary_scale = deck.time.rotary_inertia_scale;
   stable_dt = std::numeric_limits<double>::max();
   for (LocalId le = 0; le < owned; ++le) {
@@ -79,13 +146,22 @@ ShellModel::ShellModel(const decomposition::DistributedMesh& d, const Deck& deck
     const BlockSection& sc = sections.at(dm.element_block(le));
     const auto& m = sc.material;
     const double h = sc.thickness;
-    disc::hrz_lumped_mass(Xe, m.density * h, mass.at(le));
-    disc::hrz_rotary_inertia(Xe, rotary_scale * m.density * h * h * h / 12, inertia.at(le));
     disc::StableStepParams sp{m.youngs_modulus, m.poissons_ratio, m.density, h};
     sp.cx = deck.discretization.cx, sp.cT = deck.discretization.cT, sp.rotary_scale = rotary_scale;
-    stable_dt = std::min(stable_dt, disc::element_stable_dt(sp, disc::characteristic_length(Xe)));
+    const double dt_e = disc::element_stable_dt(sp, disc::characteristic_length(Xe));
+    const double factor = density_factor(deck.time, dt_e);
+    disc::hrz_lumped_mass(Xe, m.density * h, mass.at(le));
+    disc::hrz_rotary_inertia(Xe, rotary_scale * m.density * h * h * h / 12, inertia.at(le));
+    scaling.add(le, factor, mass.at(le));
+    if (factor != 1.0) {  // every frequency scales as 1/sqrt(density)
+      for (int A = 0; A < position_nodes; ++A) *mass.at(le, A) *= factor;
+      for (int b = 0; b < director_nodes; ++b) *inertia.at(le, b) *= factor;
+    }
+    stable_dt = std::min(stable_dt, dt_e * std::sqrt(factor));
   }
   stable_dt = -parallel::max(-stable_dt, dm.comm());  // global minimum (exact, rank-count independent)
+  mass_scaling = scaling.global_result(dm);
+  check_added_mass(deck, mass_scaling);
   // Interfaces: reference edge data of the minus side, built with the same routine as the elements' own data;
   // the penalty constants of paper eq. 42 (sides of different blocks use the mean of their constants, a choice
   // the paper leaves open).

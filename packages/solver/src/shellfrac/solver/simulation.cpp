@@ -18,6 +18,7 @@
 #include "shellfrac/solver/progress.hpp"
 #include "shellfrac/solver/run_outputs.hpp"
 #include "shellfrac/solver/shell_dynamics.hpp"
+#include "shellfrac/solver/shell_model.hpp"
 
 namespace shellfrac::solver {
 
@@ -149,6 +150,7 @@ void Simulation::summarize() {
   const auto& topo = *model_.topology;
   const auto& dm = *model_.distributed;
   summary_.stable_dt = model_.dynamics->stable_time_step();
+  summary_.mass_scaling = model_.dynamics->model().mass_scaling;
   summary_.dt = model_.dynamics->time_step();
   summary_.elements = m.num_elements();
   summary_.nodes = m.num_nodes();

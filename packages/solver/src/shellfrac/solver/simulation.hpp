@@ -10,6 +10,7 @@
 
 #include "shellfrac/core/types.hpp"
 #include "shellfrac/solver/deck.hpp"
+#include "shellfrac/solver/mass_scaling.hpp"
 #include "shellfrac/solver/mesh_sets.hpp"
 #include "shellfrac/solver/model_setup.hpp"
 
@@ -26,6 +27,7 @@ struct RunSummary {
   long restart_step = -1;          ///< the step the run restarted from (-1: started at t = 0)
   bool stopped_by_signal = false;  ///< SIGTERM: a checkpoint was written and the run stopped early
   std::vector<MeshSets::RegionSize> regions;  ///< the deck's regions and their sizes
+  MassScaling mass_scaling;                   ///< what Target Time Step added (no elements: none)
   bool static_relaxation = false;  ///< the deck asked for the static state (Static Relaxation)
   bool relaxed = false;            ///< ... and the run reached it before End Time
   double residual = 0;             ///< the last relative residual of the static relaxation
