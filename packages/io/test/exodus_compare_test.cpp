@@ -56,6 +56,18 @@ TEST(ExodusCompare, ElementPerturbationBeyondToleranceIsReported) {
   expect_contains(d[0], "element gid 3");
 }
 
+TEST(ExodusCompare, GlobalVariablePerturbationIsReported) {
+  const auto a = test::expected(6, 7);
+  auto b = a;
+  b.global[1][1] += 1e-9;  // step 2, the reaction
+  const auto d = compare_results(a, b, CompareTolerances{});
+  ASSERT_EQ(d.size(), 1u) << joined(d);
+  expect_contains(d[0], "global variable 'end xL simply supported_reaction_x'");
+  expect_contains(d[0], "step 2");
+  b.global_names[0] = "strain_energy";
+  expect_contains(joined(compare_results(a, b, CompareTolerances{})), "global variable 'kinetic_energy' only in A");
+}
+
 TEST(ExodusCompare, PerturbationWithinToleranceIsAccepted) {
   const auto a = test::expected(3, 7);
   auto b = a;

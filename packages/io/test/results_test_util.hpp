@@ -21,6 +21,9 @@ inline const std::vector<std::string> block_names = {"shell_a", "shell_b"};
 inline const std::vector<int> block_ids = {3, 8};
 inline const std::vector<std::string> vectors = {"displ", "velocity"};
 inline const std::vector<std::string> scalars = {"damage", "thickness"};
+/// Global variables (history columns), one longer than Exodus' default 32-character names: it must come back
+/// whole.
+inline const std::vector<std::string> globals = {"kinetic_energy", "end xL simply supported_reaction_x"};
 /// The second line is longer than an Exodus information record (80 characters) and comes back wrapped.
 inline const std::vector<std::string> info = {"shellfrac io test", std::string(100, 'x')};
 inline const std::vector<std::string> info_read_back = {"shellfrac io test", std::string(80, 'x'),
@@ -34,6 +37,7 @@ inline double nodal_value(int v, int c, GlobalId gid, int a, int step) {
   return std::sin(1.1 * gid + 0.3 * a + v + 0.7 * c) * step;
 }
 inline double element_value(int s, GlobalId gid, int step) { return std::cos(0.9 * gid + s) + step; }
+inline double global_value(int k, int step) { return std::exp(-0.5 * step) + k; }
 
 /// The layout of elements [begin, end) of the test mesh.
 inline ResultsLayout layout(int npe, GlobalId begin, GlobalId end) {
@@ -44,6 +48,7 @@ inline ResultsLayout layout(int npe, GlobalId begin, GlobalId end) {
   l.block_ids = block_ids;
   l.nodal_vectors = vectors;
   l.element_scalars = scalars;
+  l.global_variables = globals;
   l.info = info;
   for (GlobalId g = begin; g < end; ++g) {
     l.element_gids.push_back(g);
@@ -66,7 +71,9 @@ inline void write_steps(ExodusResultsWriter& w, const ResultsLayout& l) {
                               nodal_value(int(v), 2, g, a, step)});
     for (GlobalId g : l.element_gids)
       for (std::size_t s = 0; s < scalars.size(); ++s) element[s].push_back(element_value(int(s), g, step));
-    EXPECT_EQ(w.write_step(time_of(step), nodal, element), step);
+    std::vector<double> global;
+    for (std::size_t k = 0; k < globals.size(); ++k) global.push_back(global_value(int(k), step));
+    EXPECT_EQ(w.write_step(time_of(step), nodal, element, global), step);
   }
 }
 
@@ -80,6 +87,7 @@ inline ExodusResults expected(int npe, GlobalId n) {
   for (const auto& v : vectors)
     for (const char* c : {"_x", "_y", "_z"}) r.nodal_names.push_back(v + c);
   r.element_names = scalars;
+  r.global_names = globals;
   for (GlobalId g = 0; g < n; ++g) {
     r.element_gids.push_back(g);
     r.element_block_ids.push_back(block_ids[block_of(g)]);
@@ -100,6 +108,8 @@ inline ExodusResults expected(int npe, GlobalId n) {
     }
     r.nodal.push_back(nodal);
     r.element.push_back(element);
+    r.global.emplace_back();
+    for (std::size_t k = 0; k < globals.size(); ++k) r.global.back().push_back(global_value(int(k), step));
   }
   return r;
 }
@@ -117,6 +127,8 @@ inline void expect_same(const ExodusResults& a, const ExodusResults& b) {
   EXPECT_EQ(a.element_names, b.element_names);
   EXPECT_EQ(a.nodal, b.nodal);
   EXPECT_EQ(a.element, b.element);
+  EXPECT_EQ(a.global_names, b.global_names);
+  EXPECT_EQ(a.global, b.global);
   EXPECT_EQ(a.info, b.info);
 }
 

@@ -44,6 +44,7 @@ struct FileLayout {
   std::vector<Vec3> node_coords;
   std::vector<std::string> nodal_names;    ///< scalar names (displ_x, ...)
   std::vector<std::string> element_names;
+  std::vector<std::string> global_names;  ///< global variables (one value per step)
   std::vector<std::string> info;
 };
 
@@ -87,6 +88,13 @@ class FileWriter {
     file_ = exodus::create(path);
     SHELLFRAC_REQUIRE(file_.is_open(), path << ": cannot create the results file: " << exodus::last_error());
     const int id = file_.id();
+    // History column names may exceed Exodus' default 32 characters: the file declares the longest before its
+    // dimensions are defined, and stores them whole.
+    std::size_t longest = 0;
+    for (const auto& n : l.global_names) longest = std::max(longest, n.size());
+    SHELLFRAC_REQUIRE(longest <= max_global_name_length,
+                      path << ": a global variable name is longer than " << max_global_name_length << " characters");
+    if (longest > static_cast<std::size_t>(MAX_NAME_LENGTH)) ex_set_max_name_length(id, static_cast<int>(longest));
 
     ex_init_params p{};
     l.title.copy(p.title, MAX_LINE_LENGTH);
@@ -149,11 +157,18 @@ class FileWriter {
                                              static_cast<int>(num_element_vars_), truth.data()),
                           path);
     }
+    num_global_ = l.global_names.size();
+    if (num_global_ > 0) {
+      SHELLFRAC_EXO_CHECK(ex_put_variable_param(id, EX_GLOBAL, static_cast<int>(num_global_)), path);
+      SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_GLOBAL, l.global_names, true), path);
+    }
     SHELLFRAC_EXO_CHECK(ex_update(id), path);
   }
 
-  /// nodal[v]: num_nodes values (layout node order); element[s]: one value per element (layout order).
-  int put_step(double time, const std::vector<const double*>& nodal, const std::vector<const double*>& element) {
+  /// nodal[v]: num_nodes values (layout node order); element[s]: one value per element (layout order);
+  /// global: num_global values (null if none).
+  int put_step(double time, const std::vector<const double*>& nodal, const std::vector<const double*>& element,
+               const double* global) {
     const int id = file_.id();
     const int step = ++steps_;
     SHELLFRAC_EXO_CHECK(ex_put_time(id, step, &time), path_ << ": step " << step);
@@ -175,6 +190,9 @@ class FileWriter {
                             path_ << ": step " << step << ", element variable " << s + 1 << ", block "
                                   << block_ids_[b]);
       }
+    if (num_global_ > 0)
+      SHELLFRAC_EXO_CHECK(ex_put_var(id, step, EX_GLOBAL, 1, 0, static_cast<std::int64_t>(num_global_), global),
+                          path_ << ": step " << step << ", global variables");
     SHELLFRAC_EXO_CHECK(ex_update(id), path_ << ": step " << step);
     return step;
   }
@@ -185,11 +203,12 @@ class FileWriter {
   std::size_t num_nodes() const { return num_nodes_; }
   std::size_t num_nodal() const { return num_nodal_; }
   std::size_t num_element_vars() const { return num_element_vars_; }
+  std::size_t num_global() const { return num_global_; }
 
  private:
   exodus::File file_;
   std::string path_;
-  std::size_t num_elements_ = 0, num_nodes_ = 0, num_nodal_ = 0, num_element_vars_ = 0;
+  std::size_t num_elements_ = 0, num_nodes_ = 0, num_nodal_ = 0, num_element_vars_ = 0, num_global_ = 0;
   std::size_t num_file_nodes_ = 0;  ///< num_nodes_, or 1 (the placeholder) when there are no elements
   std::vector<int> block_ids_;
   std::vector<std::vector<std::size_t>> block_elements_;  ///< layout element indices per block, ascending
@@ -305,6 +324,10 @@ ExodusResults read_file(const std::string& path) {
   checked_count(ev, path, "element variable");
   r.nodal_names = exodus::get_names(id, EX_NODAL, nv, path, true);
   r.element_names = exodus::get_names(id, EX_ELEM_BLOCK, ev, path, true);
+  int gv = 0;
+  SHELLFRAC_EXO_INPUT_CHECK(ex_get_variable_param(id, EX_GLOBAL, &gv), path << ": cannot read the global variables");
+  checked_count(gv, path, "global variable");
+  r.global_names = exodus::get_names(id, EX_GLOBAL, gv, path, true);
   std::vector<int> truth(static_cast<std::size_t>(num_blk * ev), 1);
   if (ev > 0)
     SHELLFRAC_EXO_INPUT_CHECK(ex_get_truth_table(id, EX_ELEM_BLOCK, static_cast<int>(num_blk), ev, truth.data()),
@@ -340,8 +363,13 @@ ExodusResults read_file(const std::string& path) {
         out.insert(out.end(), buf.begin(), buf.end());
       }
     }
+    std::vector<double> global(static_cast<std::size_t>(gv), 0.0);
+    if (gv > 0)
+      SHELLFRAC_EXO_INPUT_CHECK(ex_get_var(id, step, EX_GLOBAL, 1, 0, gv, global.data()),
+                                path << ": cannot read the global variables at step " << step);
     r.nodal.push_back(std::move(nodal));
     r.element.push_back(std::move(element));
+    r.global.push_back(std::move(global));
   }
 
   const std::int64_t num_info = ex_inquire_int(id, EX_INQ_INFO);
@@ -375,6 +403,8 @@ ExodusResults merge(std::vector<ExodusResults>& parts, const std::vector<std::st
   out.times = first.times;
   out.nodal_names = first.nodal_names;
   out.element_names = first.element_names;
+  out.global_names = first.global_names;
+  out.global = first.global;  // every file of a set holds the same global values
   out.info = first.info;
   out.num_files = static_cast<int>(parts.size());
   const std::string differs = " differs from " + files.front() + " (not the same data set): ";
@@ -385,7 +415,8 @@ ExodusResults merge(std::vector<ExodusResults>& parts, const std::vector<std::st
     SHELLFRAC_INPUT_REQUIRE(q.block_ids == out.block_ids && q.block_names == out.block_names,
                             files[f] << differs << "element blocks");
     SHELLFRAC_INPUT_REQUIRE(q.times == out.times, files[f] << differs << "time steps");
-    SHELLFRAC_INPUT_REQUIRE(q.nodal_names == out.nodal_names && q.element_names == out.element_names,
+    SHELLFRAC_INPUT_REQUIRE(q.nodal_names == out.nodal_names && q.element_names == out.element_names &&
+                                q.global_names == out.global_names,
                             files[f] << differs << "variable names");
   }
   // (gid, file, index in file), sorted by gid.
@@ -524,6 +555,7 @@ ExodusResultsWriter::ExodusResultsWriter(const std::string& path, const ResultsL
     for (const auto& v : layout.nodal_vectors)
       for (const char* suffix : component_suffix) l.nodal_names.push_back(v + suffix);
     l.element_names = layout.element_scalars;
+    l.global_names = layout.global_variables;
     l.info = layout.info;
     impl_->num_vectors = layout.nodal_vectors.size();
     impl_->writer.open(file_, l);
@@ -540,7 +572,8 @@ ExodusResultsWriter::ExodusResultsWriter(const std::string& path, const ResultsL
 ExodusResultsWriter::~ExodusResultsWriter() = default;
 
 int ExodusResultsWriter::write_step(double time, const std::vector<std::vector<Vec3>>& nodal,
-                                    const std::vector<std::vector<double>>& element) {
+                                    const std::vector<std::vector<double>>& element,
+                                    const std::vector<double>& global) {
   auto& w = impl_->writer;
   SHELLFRAC_REQUIRE(nodal.size() == impl_->num_vectors,
                     file_ << ": write_step got " << nodal.size() << " nodal vectors, expected " << impl_->num_vectors);
@@ -565,7 +598,9 @@ int ExodusResultsWriter::write_step(double time, const std::vector<std::vector<V
                                                                    << w.num_elements());
     element_ptr.push_back(element[s].data());
   }
-  return w.put_step(time, nodal_ptr, element_ptr);
+  SHELLFRAC_REQUIRE(global.size() == w.num_global(),
+                    file_ << ": write_step got " << global.size() << " global values, expected " << w.num_global());
+  return w.put_step(time, nodal_ptr, element_ptr, global.data());
 }
 
 std::vector<std::string> find_rank_files(const std::string& path) {
@@ -646,6 +681,7 @@ void write_results(const ExodusResults& results, const std::string& path) {
   l.node_coords = r.node_coords;
   l.nodal_names = r.nodal_names;
   l.element_names = r.element_names;
+  l.global_names = r.global_names;
   l.info = r.info;
   std::map<int, int> index;
   for (std::size_t b = 0; b < r.block_ids.size(); ++b) index[r.block_ids[b]] = static_cast<int>(b);
@@ -668,7 +704,9 @@ void write_results(const ExodusResults& results, const std::string& path) {
       SHELLFRAC_REQUIRE(v.size() == ne, path << ": step " << s + 1 << ": element variable size " << v.size());
       element.push_back(v.data());
     }
-    w.put_step(r.times[s], nodal, element);
+    SHELLFRAC_REQUIRE(r.global.size() == r.times.size() && r.global[s].size() == l.global_names.size(),
+                      path << ": step " << s + 1 << " has the wrong number of global values");
+    w.put_step(r.times[s], nodal, element, r.global[s].data());
   }
   w.close();
 }
@@ -849,6 +887,23 @@ std::vector<std::string> compare_results(const ExodusResults& a, const ExodusRes
   };
   compare_vars(a.nodal_names, b.nodal_names, true);
   compare_vars(a.element_names, b.element_names, false);
+  for (const auto& n : a.global_names)
+    if (std::find(b.global_names.begin(), b.global_names.end(), n) == b.global_names.end())
+      rep.add("global variable '" + n + "' only in A");
+  for (const auto& n : b.global_names)
+    if (std::find(a.global_names.begin(), a.global_names.end(), n) == a.global_names.end())
+      rep.add("global variable '" + n + "' only in B");
+  for (std::size_t va = 0; va < a.global_names.size(); ++va) {
+    const auto it = std::find(b.global_names.begin(), b.global_names.end(), a.global_names[va]);
+    if (it == b.global_names.end()) continue;
+    const auto vb = static_cast<std::size_t>(it - b.global_names.begin());
+    const auto [ta, tr] = lookup(a.global_names[va]);
+    Worst w;
+    for (std::size_t s = 0; s < steps; ++s)
+      w.check(a.global[s][va], b.global[s][vb], ta, tr,
+              [&] { return "step " + std::to_string(s + 1) + " (t = " + num(a.times[s]) + ")"; });
+    w.report(rep, "global variable '" + a.global_names[va] + "'");
+  }
   return rep.finish();
 }
 

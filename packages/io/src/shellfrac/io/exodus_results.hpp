@@ -33,11 +33,14 @@ struct ResultsLayout {
   std::vector<Vec3> node_coords;            ///< element-major: element i, node a -> [i*npe + a] (reference)
   std::vector<std::string> nodal_vectors;   ///< e.g. {"displ", "velocity", "director"}
   std::vector<std::string> element_scalars; ///< e.g. {"block", "rank"}
+  std::vector<std::string> global_variables; ///< e.g. the history columns (one value per step, every file)
   std::vector<std::string> info;            ///< information records (e.g. the expanded input deck lines)
 };
 
 /// Longest block, set or variable name an Exodus II file stores (Exodus' MAX_NAME_LENGTH).
 constexpr std::size_t max_exodus_name_length = 32;
+/// Longest global variable name written (the file then declares its longer names; readers accept up to 255).
+constexpr std::size_t max_global_name_length = 80;
 
 /// File name of rank `rank` of `np` for base path `path` (see above).
 std::string rank_file_name(const std::string& path, int np, int rank);
@@ -52,9 +55,10 @@ class ExodusResultsWriter {
   ExodusResultsWriter& operator=(const ExodusResultsWriter&) = delete;
 
   /// Appends a step. nodal[v] has num_nodes entries (element-major, as node_coords) for layout.nodal_vectors[v];
-  /// element[s] has one value per element for layout.element_scalars[s]. Returns the 1-based step index.
+  /// element[s] has one value per element for layout.element_scalars[s]; global has one value per
+  /// layout.global_variables entry. Returns the 1-based step index.
   int write_step(double time, const std::vector<std::vector<Vec3>>& nodal,
-                 const std::vector<std::vector<double>>& element);
+                 const std::vector<std::vector<double>>& element, const std::vector<double>& global = {});
 
   /// The file this rank writes.
   const std::string& file_name() const { return file_; }
@@ -78,6 +82,8 @@ struct ExodusResults {
   std::vector<std::string> element_names;
   /// nodal[step][var][node], element[step][var][element]
   std::vector<std::vector<std::vector<double>>> nodal, element;
+  std::vector<std::string> global_names;     ///< global variables (the history columns of a shellfrac run)
+  std::vector<std::vector<double>> global;   ///< global[step][var]
   std::vector<std::string> info;
   int num_files = 1;
 };

@@ -44,8 +44,9 @@ void remove_stale_results(const std::string& path) {
     if (std::regex_match(entry.path().filename().string(), set_file)) fs::remove(entry.path(), ec);
 }
 
-/// The Exodus layout of the owned elements: blocks, DG nodes, the nodal vectors and element fields.
-io::ResultsLayout results_layout(const Deck& deck, const RunModel& model) {
+/// The Exodus layout of the owned elements: blocks, DG nodes, the nodal vectors and element fields, and the
+/// history columns as global variables (names cut to the length Exodus readers take).
+io::ResultsLayout results_layout(const Deck& deck, const RunModel& model, const std::vector<std::string>& columns) {
   const auto& dm = *model.distributed;
   io::ResultsLayout layout;
   layout.title = "shellfrac: " + deck.file;
@@ -55,6 +56,7 @@ io::ResultsLayout results_layout(const Deck& deck, const RunModel& model) {
   layout.element_scalars = {"block", "rank"};
   for (const auto& name : ShellDynamics::element_field_names()) layout.element_scalars.push_back(name);
   layout.info = info_records(*deck.expanded);
+  for (const auto& c : columns) layout.global_variables.push_back(c.substr(0, io::max_global_name_length));
   for (LocalId le = 0; le < dm.num_owned(); ++le) {
     layout.element_gids.push_back(dm.element_gid(le));
     layout.element_block.push_back(dm.element_block(le));
@@ -107,12 +109,12 @@ RunOutputs::RunOutputs(const Deck& deck, RunModel& model, const std::vector<std:
     element_constant_[0].push_back(model.mesh->blocks[dm.element_block(le)].id);
     element_constant_[1].push_back(dm.rank());
   }
-  exodus_ = std::make_unique<io::ExodusResultsWriter>(exodus_path_, results_layout(deck, model), comm);
   for (const auto& bc : deck.boundary_conditions) condition_names_.push_back(bc.name);
   std::vector<std::string> columns;
   for (const auto& [name, value] : history_row({}, 0, probe_names_, std::vector<double>(6 * probe_names_.size()),
                                                condition_names_, std::vector<double>(6 * condition_names_.size())))
     columns.push_back(name);
+  exodus_ = std::make_unique<io::ExodusResultsWriter>(exodus_path_, results_layout(deck, model, columns), comm);
   const auto& dyn = *model.dynamics;
   history_ = csv(paths.history, columns, restarted, double(restart_step), comm);
   if (!dyn.fracture()) return;
@@ -137,10 +139,10 @@ void RunOutputs::write_frame(bool fragment_rows) {
   dyn.element_fields(fields);
   std::vector<std::vector<double>> element = element_constant_;
   element.insert(element.end(), fields.begin(), fields.end());
-  exodus_->write_step(dyn.time(), nodal, element);
+  exodus_->write_step(dyn.time(), nodal, element, history_values(nullptr));
 }
 
-void RunOutputs::write_history() {
+std::vector<double> RunOutputs::history_values(StepRecord* record) {
   auto& dyn = *model_.dynamics;
   const StepRecord r = dyn.record();
   const auto probes = dyn.probes(probe_members_);
@@ -148,7 +150,14 @@ void RunOutputs::write_history() {
   std::vector<double> values;
   for (const auto& [name, value] : history_row(r, e0_, probe_names_, probes, condition_names_, reactions))
     values.push_back(value);
-  history_->write_row(values);
+  if (record) *record = r;
+  return values;
+}
+
+void RunOutputs::write_history() {
+  auto& dyn = *model_.dynamics;
+  StepRecord r;
+  history_->write_row(history_values(&r));
   if (cracks_ && r.cohesive_edges != cracks_logged_) {
     for (const auto& row : dyn.crack_events()) cracks_->write_row(row);
     cracks_logged_ = r.cohesive_edges;

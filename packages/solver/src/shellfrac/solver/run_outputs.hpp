@@ -21,6 +21,7 @@ namespace shellfrac::solver {
 
 struct Deck;
 struct RunModel;
+struct StepRecord;
 
 /// Paths of a run's result files (Output->Directory and Base Name).
 struct ResultPaths {
@@ -52,7 +53,8 @@ class RunOutputs {
   const std::string& exodus_path() const { return exodus_path_; }
 
  private:
-  std::vector<double> history_values();
+  /// The values of a history row of the current state (and its record, if `record`). Collective.
+  std::vector<double> history_values(StepRecord* record);
   const Deck& deck_;
   RunModel& model_;
   std::vector<std::string> probe_names_, condition_names_;

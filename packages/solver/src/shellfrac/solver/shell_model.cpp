@@ -162,9 +162,13 @@ ShellModel::ShellModel(const decomposition::DistributedMesh& d, const Deck& deck
   stable_dt = -parallel::max(-stable_dt, dm.comm());  // global minimum (exact, rank-count independent)
   mass_scaling = scaling.global_result(dm);
   check_added_mass(deck, mass_scaling);
-  // Interfaces: reference edge data of the minus side, built with the same routine as the elements' own data;
-  // the penalty constants of paper eq. 42 (sides of different blocks use the mean of their constants, a choice
-  // the paper leaves open).
+  build_interfaces(deck);
+}
+
+// Interfaces: reference edge data of the minus side, built with the same routine as the elements' own data;
+// the penalty constants of paper eq. 42 (sides of different blocks use the mean of their constants, a choice
+// the paper leaves open).
+void ShellModel::build_interfaces(const Deck& deck) {
   const auto& ifs = dm.interfaces();
   const auto beta = [&](LocalId le, bool director) {
     const BlockSection& sc = sections.at(dm.element_block(le));
@@ -188,6 +192,7 @@ ShellModel::ShellModel(const decomposition::DistributedMesh& d, const Deck& deck
     if (fc.plus < owned) incident[fc.plus].push_back({int(i), 1});
   }
 }
+
 
 double ShellModel::bytes() const {
   return sizeof(disc::DgElementRef) * double(element_refs.size()) +

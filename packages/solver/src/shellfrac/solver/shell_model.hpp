@@ -66,6 +66,10 @@ struct ShellModel {
   }
   /// Bytes of reference data held on this rank.
   double bytes() const;
+
+ private:
+  /// The interface elements: reference edge data, penalty constants, each element's incident interfaces.
+  void build_interfaces(const Deck& deck);
 };
 
 }  // namespace shellfrac::solver
