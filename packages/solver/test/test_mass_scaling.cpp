@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "deck_test_util.hpp"
+#include "in_memory_model.hpp"
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/mesh/generators.hpp"
 #include "shellfrac/meshio/exodus_mesh_io.hpp"
@@ -58,10 +59,6 @@ Teuchos::RCP<Teuchos::ParameterList> sliver_deck(double target) {
   return deck;
 }
 
-solver::RunModel build(const Teuchos::RCP<Teuchos::ParameterList>& deck) {
-  return solver::build_run_model(solver::Deck::from_parameters(deck, "mass_scaling.xml"), MPI_COMM_WORLD);
-}
-
 double total_mass(const solver::RunModel& model) {
   double m = 0;
   const auto& mass = model.dynamics->model().mass;
@@ -80,25 +77,16 @@ double balance_after(solver::RunModel& model, int steps) {
   return std::abs(solver::energy_balance_error(dyn.record(), e0)) / e0;
 }
 
-std::string input_error(const Teuchos::RCP<Teuchos::ParameterList>& deck) {
-  try {
-    build(deck);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 }  // namespace
 
 TEST(MassScaling, SliversReachTheTargetStep) {
-  auto plain = build(sliver_deck(0));
+  auto plain = build_model(sliver_deck(0), "mass_scaling.xml");
   const double dt0 = plain.dynamics->time_step();
   EXPECT_EQ(plain.dynamics->model().mass_scaling.elements, 0);
   const double physical = rho * thickness * width;
   EXPECT_NEAR(total_mass(plain), physical, 1e-12 * physical);
 
-  auto scaled = build(sliver_deck(4 * dt0));
+  auto scaled = build_model(sliver_deck(4 * dt0), "mass_scaling.xml");
   const auto& ms = scaled.dynamics->model().mass_scaling;
   EXPECT_EQ(ms.elements, 4);
   EXPECT_NEAR(scaled.dynamics->time_step(), 4 * dt0, 1e-11 * dt0);
@@ -118,14 +106,15 @@ TEST(MassScaling, SliversReachTheTargetStep) {
 }
 
 TEST(MassScaling, TooMuchAddedMassIsRefusedUnlessForced) {
-  const double dt0 = build(sliver_deck(0)).dynamics->time_step();
+  const double dt0 = build_model(sliver_deck(0), "mass_scaling.xml").dynamics->time_step();
   auto deck = sliver_deck(20 * dt0);  // factor 400 on 1/1000 of the mass: 40 % added
-  const std::string m = input_error(deck);
+  const std::string m = input_error(deck, "mass_scaling.xml");
   EXPECT_NE(m.find("mass_scaling.xml"), std::string::npos) << m;
   EXPECT_NE(m.find("Maximum Added Mass Fraction"), std::string::npos) << m;
   deck->sublist("Time Integration").set("Force Mass Scaling", true);
-  EXPECT_EQ(input_error(deck), "");
+  EXPECT_EQ(input_error(deck, "mass_scaling.xml"), "");
   auto both = sliver_deck(4 * dt0);
   both->sublist("Time Integration").set("Time Step", dt0);
-  EXPECT_NE(input_error(both).find("not both"), std::string::npos) << input_error(both);
+  EXPECT_NE(input_error(both, "mass_scaling.xml").find("not both"), std::string::npos)
+      << input_error(both, "mass_scaling.xml");
 }

@@ -14,6 +14,7 @@
 #include <cmath>
 
 #include "deck_test_util.hpp"
+#include "in_memory_model.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
 #include "shellfrac/solver/deck.hpp"
@@ -34,10 +35,6 @@ Teuchos::RCP<Teuchos::ParameterList> plate_deck() {
   return deck;
 }
 
-solver::RunModel build(const Teuchos::RCP<Teuchos::ParameterList>& deck) {
-  return solver::build_run_model(solver::Deck::from_parameters(deck, "in-memory deck"), MPI_COMM_WORLD);
-}
-
 /// Flag per mesh node: member of node set `name`.
 std::vector<char> node_set(const mesh::SerialMesh& mesh, const std::string& name) {
   std::vector<char> member(mesh.num_nodes(), 0);
@@ -56,7 +53,7 @@ TEST(Phases, StartUpAccelerationIsGravityMinusDamping) {
   auto& gravity = deck->sublist("Loads").sublist("gravity");
   gravity.set("Type", std::string("Gravity")), gravity.set("Acceleration", vec3(0, 0, g));
   deck->sublist("Initial Conditions").sublist("kick").set("Velocity", vec3(0, 0, v0));
-  const auto model = build(deck);
+  const auto model = build_model(deck);
   const auto& s = model.dynamics->state();
   const double expected = g - alpha * v0, tol = 1e-9 * std::abs(expected);
   for (LocalId le = 0; le < model.distributed->num_owned(); ++le) {
@@ -80,7 +77,7 @@ TEST(Phases, ConstraintsHoldProjectAndPrescribe) {
   deck->sublist("Initial Conditions").sublist("kick").set("Velocity", vec3(0.3, 0.2, 1.0));
   auto& gravity = deck->sublist("Loads").sublist("gravity");
   gravity.set("Type", std::string("Gravity")), gravity.set("Acceleration", vec3(1.0, 2.0, -9.81));
-  auto model = build(deck);
+  auto model = build_model(deck);
   auto& dyn = *model.dynamics;
   for (int k = 0; k < 60; ++k) dyn.step();
   const auto& s = dyn.state();
@@ -133,7 +130,7 @@ TEST(Phases, TwoConditionsOnOneNodeSetShareItsReaction) {
   boundary_condition(*deck, "wall", "Symmetry", "y_min").set("Normal", vec3(0, 1, 0));
   auto& gravity = deck->sublist("Loads").sublist("gravity");
   gravity.set("Type", std::string("Gravity")), gravity.set("Acceleration", vec3(0, gy, gz));
-  const auto model = build(deck);
+  const auto model = build_model(deck);
   const auto r = model.dynamics->reactions();  // floor: force (3), couple (3); wall: force (3), couple (3)
   // Mass of every DG copy of the set's nodes.
   const auto member = node_set(*model.mesh, "y_min");
@@ -158,7 +155,7 @@ TEST(Phases, TwoConditionsOnOneNodeSetShareItsReaction) {
   boundary_condition(*clamped, "clamp", "Clamped", "y_min");
   auto& g2 = clamped->sublist("Loads").sublist("gravity");
   g2.set("Type", std::string("Gravity")), g2.set("Acceleration", vec3(0, gy, gz));
-  const auto rc = build(clamped).dynamics->reactions();
+  const auto rc = build_model(clamped).dynamics->reactions();
   EXPECT_NEAR(rc[1], r[1] + r[7], tol);
   EXPECT_NEAR(rc[2], r[2] + r[8], tol);
 }

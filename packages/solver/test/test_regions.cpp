@@ -15,6 +15,7 @@
 #include <cmath>
 
 #include "deck_test_util.hpp"
+#include "in_memory_model.hpp"
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
@@ -57,24 +58,10 @@ Teuchos::RCP<Teuchos::ParameterList> cylinder_patch_deck() {
   return deck;
 }
 
-solver::RunModel build(const Teuchos::RCP<Teuchos::ParameterList>& deck) {
-  return solver::build_run_model(solver::Deck::from_parameters(deck, "regions.xml"), MPI_COMM_WORLD);
-}
-
 long count(const std::vector<char>& flags) {
   long n = 0;
   for (char f : flags) n += f != 0;
   return n;
-}
-
-/// The InputError message of building the deck, or "" if it builds.
-std::string input_error(const Teuchos::RCP<Teuchos::ParameterList>& deck) {
-  try {
-    build(deck);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 }  // namespace
@@ -97,7 +84,7 @@ TEST(Regions, CylinderSectorSelectsThePatch) {
 
 TEST(Regions, PressurePulseOnACylinderSector) {
   if (parallel::size() > 1) GTEST_SKIP() << "serial: the resultant is summed over this rank's elements";
-  const auto model = build(cylinder_patch_deck());
+  const auto model = build_model(cylinder_patch_deck(), "regions.xml");
   const auto& f = model.dynamics->state().external_force;
   double F[3] = {0, 0, 0};
   for (std::size_t i = 0; i < f.size(); ++i) F[i % 3] += f.data()[i];
@@ -149,32 +136,35 @@ TEST(Regions, BadRegionsAreRefused) {
     auto deck = base_deck();
     set_rectangle(*deck, 4.0, 1.0, 8, 2);
     region(*deck, "x_min", "Sphere").set("Radius", 1.0);
-    const std::string m = input_error(deck);
+    const std::string m = input_error(deck, "regions.xml");
     EXPECT_NE(m.find("regions.xml"), std::string::npos) << m;
     EXPECT_NE(m.find("'x_min' has the name of a set"), std::string::npos) << m;
   }
   {
     auto deck = base_deck();
     region(*deck, "ball", "Sphere");
-    EXPECT_NE(input_error(deck).find("a Sphere needs a Radius > 0"), std::string::npos) << input_error(deck);
+    EXPECT_NE(input_error(deck, "regions.xml").find("a Sphere needs a Radius > 0"), std::string::npos)
+        << input_error(deck, "regions.xml");
   }
   {
     auto deck = base_deck();
     auto& r = region(*deck, "sector", "Cylinder Sector");
     r.set("Angle Range", Teuchos::Array<double>(Teuchos::tuple<double>(90.0, 45.0)));
     r.set("Radius Range", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 1.0)));
-    EXPECT_NE(input_error(deck).find("Angle Range {from, to} needs from < to"), std::string::npos)
-        << input_error(deck);
+    EXPECT_NE(input_error(deck, "regions.xml").find("Angle Range {from, to} needs from < to"), std::string::npos)
+        << input_error(deck, "regions.xml");
   }
   {
     auto deck = base_deck();
     region(*deck, "box", "Box").set("Min", vec3(0, 0, std::nan("")));
-    EXPECT_NE(input_error(deck).find("is not finite"), std::string::npos) << input_error(deck);
+    EXPECT_NE(input_error(deck, "regions.xml").find("is not finite"), std::string::npos)
+        << input_error(deck, "regions.xml");
   }
   {
     auto deck = base_deck();
     set_rectangle(*deck, 4.0, 1.0, 8, 2);
     boundary_condition(*deck, "root", "Clamped", "nowhere");
-    EXPECT_NE(input_error(deck).find("'nowhere'"), std::string::npos) << input_error(deck);
+    EXPECT_NE(input_error(deck, "regions.xml").find("'nowhere'"), std::string::npos)
+        << input_error(deck, "regions.xml");
   }
 }

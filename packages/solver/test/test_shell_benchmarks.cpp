@@ -20,12 +20,14 @@
 //    shear corrections are of order (t/R)^2 = 4e-4); the upper half on its symmetry plane, 32 elements on the half
 //    circle with P1-projected membrane strains, within 1 % (docs/verification.md §6.5: 1.002; point values 0.993).
 //  * NodalAndLineLoadWork: a dead load's work equals its force times the displacement of its points to round-off,
-//    and the energy balance of a dynamic run holds within 1e-3 of the work (as the other loads, test_loads_constraints).
+//    and the energy balance of a dynamic run holds within 1e-3 of the work (as the other loads,
+//    test_loads_constraints).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "deck_test_util.hpp"
+#include "in_memory_model.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
 #include "shellfrac/solver/deck.hpp"
@@ -38,10 +40,6 @@ using namespace shellfrac;
 using namespace shellfrac::test;
 
 namespace {
-
-solver::RunModel build(const Teuchos::RCP<Teuchos::ParameterList>& deck) {
-  return solver::build_run_model(solver::Deck::from_parameters(deck, "in-memory deck"), MPI_COMM_WORLD);
-}
 
 /// Steps until the static state (or `limit` steps); returns whether it was reached.
 bool relax(solver::ShellDynamics& dyn, long limit) {
@@ -88,7 +86,7 @@ Teuchos::RCP<Teuchos::ParameterList> roof_deck(double load_scale) {
 
 /// Vertical deflection of the free-edge midpoint of the roof under `load_scale` x its self-weight.
 double roof_deflection(double load_scale) {
-  auto model = build(roof_deck(load_scale));
+  auto model = build_model(roof_deck(load_scale));
   EXPECT_TRUE(relax(*model.dynamics, 200000)) << "residual " << model.dynamics->relaxation_residual();
   const auto r = model.dynamics->record();
   EXPECT_LE(std::abs(solver::energy_balance_error(r, 0.0)), 1e-6 * r.external_work);
@@ -111,8 +109,9 @@ void end_loaded_cantilever(double k, double w_over_L, double u_over_L) {
   auto deck = strip_deck(L, 20);
   if (k < 1) deck->sublist("Time Integration").set("Relaxation Tolerance", 1e-6);  // above the round-off floor
   auto& tip = deck->sublist("Loads").sublist("tip shear");
-  tip.set("Type", std::string("Line Load")), tip.set("Side Set", std::string("x_max")), tip.set("Force Per Length", vec3(0, 0, P));
-  auto model = build(deck);
+  tip.set("Type", std::string("Line Load")), tip.set("Side Set", std::string("x_max")),
+      tip.set("Force Per Length", vec3(0, 0, P));
+  auto model = build_model(deck);
   ASSERT_TRUE(relax(*model.dynamics, 2000000)) << "residual " << model.dynamics->relaxation_residual();
   const Vec3 u = displacement_at(model, {L, 0.5, 0});
   EXPECT_NEAR(u[2], w_over_L * L, 0.01 * w_over_L * L) << "P L^2/EI = " << k;
@@ -140,7 +139,7 @@ double pinched_half_ring(double P, int n_circ, const std::string& membrane) {
   load.set("Type", std::string("Nodal Force")), load.set("Node Set", std::string("crown"));
   load.set("Force", vec3(0, 0, -P / 3));  // three mesh nodes across the width
   static_relaxation(*deck, 1e-4, 100);
-  auto model = build(deck);
+  auto model = build_model(deck);
   EXPECT_TRUE(relax(*model.dynamics, 200000)) << "residual " << model.dynamics->relaxation_residual();
   double w = 0;
   for (double x : {0.0, 0.05, 0.1}) w += displacement_at(model, {x, 0, 1})[2] / 3;
@@ -173,7 +172,7 @@ TEST(ShellBenchmarks, EdgeMomentRollsAStrip) {
   auto& couple = deck->sublist("Loads").sublist("end couple");
   couple.set("Type", std::string("Edge Moment")), couple.set("Side Set", std::string("x_max"));
   couple.set("Moment Per Length", vec3(0, -EI * theta / L, 0));  // about -y, per unit width (b = 1)
-  auto model = build(deck);
+  auto model = build_model(deck);
   ASSERT_TRUE(relax(*model.dynamics, 2000000)) << "residual " << model.dynamics->relaxation_residual();
   const Vec3 u = displacement_at(model, {L, 0.5, 0});
   const double u_exact = -L * (1 - std::sin(theta) / theta), w_exact = L * (1 - std::cos(theta)) / theta;
@@ -190,9 +189,10 @@ TEST(ShellBenchmarks, NodalAndLineLoadWork) {
   point.set("Type", std::string("Nodal Force")), point.set("Node Set", std::string("corners"));
   point.set("Force", vec3(0.5, -0.2, 3.0));
   auto& line = deck->sublist("Loads").sublist("edge load");
-  line.set("Type", std::string("Line Load")), line.set("Side Set", std::string("y_max")), line.set("Force Per Length", vec3(0, 0, -2.0));
+  line.set("Type", std::string("Line Load")), line.set("Side Set", std::string("y_max")),
+      line.set("Force Per Length", vec3(0, 0, -2.0));
   deck->sublist("Time Integration").set("End Time", 0.01);
-  auto model = build(deck);
+  auto model = build_model(deck);
   auto& dyn = *model.dynamics;
   // The distributed loads: the corner forces are shared by the DG copies of each corner, the line load sums to
   // its force per length times the edge length.
@@ -203,7 +203,8 @@ TEST(ShellBenchmarks, NodalAndLineLoadWork) {
   EXPECT_NEAR(total_z, 3.0 * 4 - 2.0 * 2.0, 1e-12);  // the four corners, and y_max of length 2
   while (dyn.time() < 0.01) dyn.step();
   double work = 0;
-  for (std::size_t i = 0; i < s.external_force.size(); ++i) work += s.external_force.data()[i] * (s.x.data()[i] - X.data()[i]);
+  for (std::size_t i = 0; i < s.external_force.size(); ++i)
+    work += s.external_force.data()[i] * (s.x.data()[i] - X.data()[i]);
   const auto r = dyn.record();
   EXPECT_NEAR(r.external_work, work, 1e-10 * std::abs(work));
   EXPECT_LE(std::abs(solver::energy_balance_error(r, 0.0)), 1e-3 * std::abs(work));

@@ -219,6 +219,16 @@ std::string value_string(const Teuchos::ParameterEntry& e) {
 
 }  // namespace
 
+std::vector<double> fixed_array(const ParameterList& pl, const std::string& name, std::size_t n, const Context& ctx) {
+  const auto v = pl.get<Teuchos::Array<double>>(name);
+  SHELLFRAC_INPUT_REQUIRE(v.size() == static_cast<Teuchos::Array<double>::size_type>(n),
+                          ctx.file << ": '" << ctx.path << "->" << name << "' must have " << n << " components, not "
+                                   << v.size());
+  for (double x : v)
+    SHELLFRAC_INPUT_REQUIRE(std::isfinite(x), ctx.file << ": '" << ctx.path << "->" << name << "' is not finite");
+  return std::vector<double>(v.begin(), v.end());
+}
+
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
   for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;

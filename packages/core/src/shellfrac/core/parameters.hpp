@@ -26,6 +26,10 @@ struct Context {
   Context operator/(const std::string& child) const { return {file, path + "->" + child}; }
 };
 
+/// The array parameter `name` of `pl`, which must have exactly n entries, all finite: InputError naming the
+/// file, the parameter path and the problem otherwise.
+std::vector<double> fixed_array(const ParameterList& pl, const std::string& name, std::size_t n, const Context& ctx);
+
 /// Reads an XML deck on rank 0 and broadcasts it to all ranks. A missing/unreadable file or malformed XML
 /// is an InputError naming the file, thrown on every rank. Collective.
 RCP<ParameterList> read_deck(const std::string& file, MPI_Comm comm = MPI_COMM_WORLD);

@@ -72,11 +72,7 @@ void CentralDifference::step(ShellState& s, double dt) {
 // sums are exact (ExactSum), so the decisions are the same on any rank count.
 void CentralDifference::relax(ShellState& s) {
   ExactSum kinetic;
-  for (LocalId le = 0; le < model_.owned; ++le) {
-    for (int A = 0; A < position_nodes; ++A)
-      for (int c = 0; c < 3; ++c) kinetic.add(0.5 * *model_.mass.at(le, A) * s.v.at(le, A)[c] * s.v.at(le, A)[c]);
-    for (int b = 0; b < director_nodes; ++b) kinetic.add(model_.rotary_kinetic(s, le, b));
-  }
+  for (LocalId le = 0; le < model_.owned; ++le) kinetic.add(model_.element_kinetic(s, le));
   kinetic.allreduce(model_.dm.comm());
   const double k = kinetic.value();
   if (k < kinetic_before_) {

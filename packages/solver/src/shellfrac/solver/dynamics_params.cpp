@@ -9,6 +9,11 @@
 
 namespace shellfrac::solver {
 
+namespace {
+/// The 3 components of a fixed_array as a vector.
+Vec3 to_vec3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
+}  // namespace
+
 Teuchos::RCP<const Teuchos::ParameterList> DiscretizationParams::valid_parameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("Discretization"));
   pl->set("Position Penalty", 3.0, "c_x in beta_x = c_x E h (paper eq. 42; 3 in every example of the paper)",
@@ -156,11 +161,7 @@ BoundaryCondition BoundaryCondition::from_parameters(const std::string& name, Te
                                             : Type::PrescribedRotation;
   bc.node_set = pl.get<std::string>("Node Set");
   bc.elements = pl.get<std::string>("Elements");
-  const auto vec3 = [&](const char* name) {
-    const auto v = pl.get<Teuchos::Array<double>>(name);
-    SHELLFRAC_INPUT_REQUIRE(v.size() == 3, ctx.file << ": '" << ctx.path << "->" << name << "' must have 3 components");
-    return Vec3{v[0], v[1], v[2]};
-  };
+  const auto vec3 = [&](const char* name) { return to_vec3(params::fixed_array(pl, name, 3, ctx)); };
   bc.normal = vec3("Normal");
   const double n = std::sqrt(bc.normal[0] * bc.normal[0] + bc.normal[1] * bc.normal[1] + bc.normal[2] * bc.normal[2]);
   SHELLFRAC_INPUT_REQUIRE((bc.type != Type::Symmetry && bc.type != Type::RigidDiaphragm) || n > 0,
@@ -202,15 +203,9 @@ InitialVelocity InitialVelocity::from_parameters(const std::string& name, Teucho
   InitialVelocity iv;
   iv.name = name;
   iv.elements = pl.get<std::string>("Elements");
-  const auto v = pl.get<Teuchos::Array<double>>("Velocity");
-  SHELLFRAC_INPUT_REQUIRE(v.size() == 3, ctx.file << ": '" << ctx.path << "->Velocity' must have 3 components, not "
-                                                  << v.size());
-  iv.velocity = {v[0], v[1], v[2]};
-  for (const char* name : {"Angular Velocity", "Center"}) {
-    const auto w = pl.get<Teuchos::Array<double>>(name);
-    SHELLFRAC_INPUT_REQUIRE(w.size() == 3, ctx.file << ": '" << ctx.path << "->" << name << "' must have 3 components");
-    (std::string(name) == "Center" ? iv.center : iv.angular_velocity) = {w[0], w[1], w[2]};
-  }
+  iv.velocity = to_vec3(params::fixed_array(pl, "Velocity", 3, ctx));
+  iv.angular_velocity = to_vec3(params::fixed_array(pl, "Angular Velocity", 3, ctx));
+  iv.center = to_vec3(params::fixed_array(pl, "Center", 3, ctx));
   iv.normal_velocity = pl.get<double>("Normal Velocity");
   return iv;
 }
@@ -308,11 +303,7 @@ Load Load::from_parameters(const std::string& name, Teuchos::ParameterList& pl, 
     for (std::size_t i = 1; i < l.times.size(); ++i)
       SHELLFRAC_INPUT_REQUIRE(l.times[i] > l.times[i - 1], ctx.file << ": '" << ctx.path << "->Times' must increase");
   }
-  const auto vec3 = [&](const char* what) {
-    const auto v = pl.get<Teuchos::Array<double>>(what);
-    SHELLFRAC_INPUT_REQUIRE(v.size() == 3, ctx.file << ": '" << ctx.path << "->" << what << "' must have 3 components");
-    return Vec3{v[0], v[1], v[2]};
-  };
+  const auto vec3 = [&](const char* what) { return to_vec3(params::fixed_array(pl, what, 3, ctx)); };
   l.acceleration = vec3("Acceleration");
   l.force = vec3(l.type == Type::LineLoad ? "Force Per Length" : "Force");
   l.moment = vec3("Moment Per Length");

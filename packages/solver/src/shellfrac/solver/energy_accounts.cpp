@@ -30,17 +30,6 @@ void element_angular_momentum(const ShellState& s, const ShellModel& model, Loca
   }
 }
 
-/// Kinetic energy of owned element le: translational and rotary.
-double element_kinetic(const ShellState& s, const ShellModel& model, LocalId le) {
-  double k = 0;
-  for (int A = 0; A < 6; ++A)
-    for (int c = 0; c < 3; ++c) k += 0.5 * *model.mass.at(le, A) * s.v.at(le, A)[c] * s.v.at(le, A)[c];
-  for (int b = 0; b < 3; ++b)
-    for (int c = 0; c < 2; ++c)
-      k += 0.5 * *model.inertia.at(le, b) * s.director_rate.at(le, b)[c] * s.director_rate.at(le, b)[c];
-  return k;
-}
-
 }  // namespace
 
 // One exact accumulator per quantity, reduced together with one MPI_Allreduce: O(1) communication, and the
@@ -51,7 +40,7 @@ StepRecord step_record(const ShellState& s, const ShellModel& model, const Fract
   std::vector<ExactSum> sum(count);
   const LocalId no = model.owned;
   for (LocalId le = 0; le < no; ++le) {
-    sum[kinetic].add(element_kinetic(s, model, le));
+    sum[kinetic].add(model.element_kinetic(s, le));
     sum[strain].add(*s.strain_energy.at(le));
     sum[external].add(*s.external_work.at(le));
     sum[reaction].add(*s.reaction_work.at(le));

@@ -78,14 +78,7 @@ Region Region::from_parameters(const std::string& name, Teuchos::ParameterList& 
   r.name = name;
   const std::string shape = pl.get<std::string>("Shape");
   r.shape = shape == "Sphere" ? Shape::Sphere : shape == "Cylinder Sector" ? Shape::CylinderSector : Shape::Box;
-  const auto array = [&](const char* what, long n) {
-    const auto v = pl.get<Teuchos::Array<double>>(what);
-    SHELLFRAC_INPUT_REQUIRE(v.size() == n, ctx.file << ": '" << ctx.path << "->" << what << "' must have " << n
-                                                    << " components");
-    for (double x : v)
-      SHELLFRAC_INPUT_REQUIRE(std::isfinite(x), ctx.file << ": '" << ctx.path << "->" << what << "' is not finite");
-    return v;
-  };
+  const auto array = [&](const char* what, std::size_t n) { return params::fixed_array(pl, what, n, ctx); };
   const auto vec = [&](const char* what) {
     const auto v = array(what, 3);
     return Vec3{v[0], v[1], v[2]};

@@ -59,6 +59,17 @@ struct ShellModel {
   /// Per owned element: its interfaces as (local interface, side), side 0 = minus, in increasing interface id.
   std::vector<std::vector<std::pair<int, int>>> incident;
 
+  /// Kinetic energy of owned element le: 1/2 m |v|^2 over its position nodes plus 1/2 I |T-dot|^2 over its
+  /// director nodes (the history's kinetic_energy, docs/theory.md §11).
+  double element_kinetic(const ShellState& s, LocalId le) const {
+    double k = 0;
+    for (int A = 0; A < position_nodes; ++A)
+      for (int c = 0; c < 3; ++c) k += 0.5 * *mass.at(le, A) * s.v.at(le, A)[c] * s.v.at(le, A)[c];
+    for (int b = 0; b < director_nodes; ++b)
+      for (int c = 0; c < 2; ++c)
+        k += 0.5 * *inertia.at(le, b) * s.director_rate.at(le, b)[c] * s.director_rate.at(le, b)[c];
+    return k;
+  }
   /// Rotary kinetic energy 1/2 I |T-dot|^2 of director node b of owned element le.
   double rotary_kinetic(const ShellState& s, LocalId le, int b) const {
     const double* T = s.director_rate.at(le, b);
