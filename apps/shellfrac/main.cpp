@@ -10,6 +10,7 @@
 #include <mpi.h>
 
 #include <Tpetra_Core.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -29,7 +30,10 @@ const char* usage =
     "\n"
     "options:\n"
     "  --check                          validate the deck, build the mesh and partition, write nothing\n"
-    "  --restart FILE                   continue from the checkpoint FILE (overrides Checkpoint->Restart From)\n"
+    "  --restart FILE                   continue from the checkpoint FILE (overrides Checkpoint->Restart From);\n"
+    "                                   the mesh and the physics must be the checkpoint's\n"
+    "  --allow-physics-change           with --restart: accept materials, loads, conditions etc. other than the\n"
+    "                                   checkpoint's (the mesh must still be the same)\n"
     "  --quiet                          no progress lines during the run (Output->Progress Interval)\n"
     "  --print-valid-parameters [FILE]  write a documented XML deck with every parameter and its default\n"
     "  --help                           this text\n"
@@ -47,7 +51,7 @@ const char* usage =
 int run(int argc, char** argv) {
   const bool root = shellfrac::parallel::rank() == 0;
   std::vector<std::string> args(argv + 1, argv + argc);
-  bool check = false, quiet = false;
+  bool check = false, quiet = false, allow_physics_change = false;
   std::string deck, restart;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
@@ -75,6 +79,8 @@ int run(int argc, char** argv) {
       check = true;
     } else if (a == "--quiet") {
       quiet = true;
+    } else if (a == "--allow-physics-change") {
+      allow_physics_change = true;
     } else if (a == "--restart") {
       if (i + 1 >= args.size()) {
         if (root) std::cerr << "shellfrac: error: --restart needs a checkpoint file\n\n" << usage;
@@ -95,7 +101,7 @@ int run(int argc, char** argv) {
     if (root) std::cerr << "shellfrac: error: no input deck given\n\n" << usage;
     return 2;
   }
-  shellfrac::solver::Simulation sim(deck, MPI_COMM_WORLD, restart);
+  shellfrac::solver::Simulation sim(deck, MPI_COMM_WORLD, restart, allow_physics_change);
   if (quiet) sim.set_quiet();
   const auto& s = sim.summary();
   if (root) {
@@ -114,6 +120,7 @@ int run(int argc, char** argv) {
                 << ms.max_element + 1 << " (centroid " << ms.max_centroid[0] << ", " << ms.max_centroid[1] << ", "
                 << ms.max_centroid[2] << ")\n";
     }
+    if (!s.time_step_warning.empty()) std::cerr << "shellfrac: warning: " << s.time_step_warning << "\n";
     for (const auto& r : s.regions)
       std::cout << "  region '" << r.name << "': " << r.elements << " elements, " << r.nodes << " nodes, " << r.edges
                 << " edges\n";
@@ -129,7 +136,9 @@ int run(int argc, char** argv) {
                 << 1e6 * out.wall_seconds / (double(out.steps) * double(out.elements)) << " us per element-step on "
                 << shellfrac::parallel::size() << " rank(s))\n";
     for (const auto& f : out.files) std::cout << "  wrote " << f << "\n";
-    if (out.stopped_by_signal) std::cout << "  stopped by SIGTERM at step " << sim.summary().steps << "; continue with --restart\n";
+    if (out.stopped_by_signal)
+      std::cout << "  stopped by SIGTERM at step " << std::max(out.restart_step, 0L) + out.steps << "; continue with --restart "
+                << out.checkpoint << "\n";
     if (out.relaxed)
       std::cout << "  static equilibrium reached after " << out.steps << " steps: relative residual "
                 << out.residual << "\n";
@@ -144,6 +153,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  shellfrac::solver::catch_stop_signals();  // before MPI and the set-up: a batch system's signal is never lost
   Tpetra::ScopeGuard scope(&argc, &argv);
   return shellfrac::run_guarded("shellfrac", [&] { return run(argc, argv); });
 }

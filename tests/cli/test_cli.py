@@ -159,9 +159,12 @@ class Shellfrac(unittest.TestCase):
         proc.send_signal(signal.SIGTERM)
         out, err = proc.communicate(timeout=120)
         self.assertEqual(proc.returncode, 4, err)
-        self.assertIn("stopped by SIGTERM", out)
-        self.assertTrue(os.path.exists(os.path.join(self.dir, "long_checkpoint.h5")))
-        self.assertFalse(os.path.exists(os.path.join(self.dir, "long_checkpoint.h5.tmp")))
+        m = re.search(r"stopped by SIGTERM at step (\d+); continue with --restart (\S+)", out)
+        self.assertTrue(m, out)
+        checkpoint = m.group(2)
+        self.assertEqual(os.path.basename(checkpoint), "long_checkpoint_step%s.h5" % m.group(1))
+        self.assertTrue(os.path.exists(os.path.join(self.dir, checkpoint)))
+        self.assertFalse([f for f in os.listdir(self.dir) if f.endswith(".tmp")])
         rows = sum(1 for _ in open(history))
         # the Exodus file is complete enough to read back: compare it with itself
         exo = os.path.join(self.dir, "long.exo")
@@ -171,7 +174,7 @@ class Shellfrac(unittest.TestCase):
         text = open(deck).read().replace('value="1.0"', 'value="9e-5"')
         with open(deck, "w") as f:
             f.write(text)
-        r = run([SHELLFRAC, deck, "--restart", os.path.join(self.dir, "long_checkpoint.h5")], cwd=self.dir)
+        r = run([SHELLFRAC, deck, "--restart", os.path.join(self.dir, checkpoint)], cwd=self.dir)
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertGreaterEqual(sum(1 for _ in open(history)), rows)
         self.assertTrue(any(f.startswith("long.restart") for f in os.listdir(self.dir)), os.listdir(self.dir))
@@ -192,8 +195,10 @@ class Shellfrac(unittest.TestCase):
         self.assertRegex(r.stderr, r"numerical blow-up at step [0-9]+, time [0-9.e+-]+: non-finite position or force "
                                    r"in element [0-9]+")
         # ... and writes the last good state as a checkpoint, from which a run can restart
-        self.assertIn("The last good state (step", r.stderr)
-        self.assertTrue(os.path.exists(os.path.join(self.dir, "unstable_checkpoint.h5")))
+        m = re.search(r"The last good state \(step (\d+), time [0-9.e+-]+\) is in (\S+);", r.stderr)
+        self.assertTrue(m, r.stderr)
+        self.assertEqual(m.group(2), "unstable_checkpoint_step%s.h5" % m.group(1))
+        self.assertTrue(os.path.exists(os.path.join(self.dir, m.group(2))))
 
 
 class MeshTool(unittest.TestCase):

@@ -45,6 +45,20 @@ void continuous(const std::string& dir, MPI_Comm comm) {
   solver::Simulation(dir + "/run.xml", comm).run();
 }
 
+/// The checkpoint of the first part of a broken run (the only run_checkpoint_step<N>.h5 in `dir`).
+std::string checkpoint_in(const std::string& dir) {
+  std::string found;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    const std::string f = e.path().filename();
+    if (f.rfind("run_checkpoint_step", 0) == 0 && f.size() > 3 && f.substr(f.size() - 3) == ".h5") {
+      EXPECT_TRUE(found.empty()) << "two checkpoints in " << dir;
+      found = dir + "/" + f;
+    }
+  }
+  EXPECT_FALSE(found.empty()) << "no checkpoint in " << dir;
+  return found;
+}
+
 /// Runs to 10.5 us on `first`, then restarts the same deck to 14 us on `second` (either may be MPI_COMM_NULL on
 /// ranks outside it). Collective over MPI_COMM_WORLD.
 void broken_run(const std::string& dir, MPI_Comm first, MPI_Comm second) {
@@ -56,7 +70,7 @@ void broken_run(const std::string& dir, MPI_Comm first, MPI_Comm second) {
   MPI_Barrier(MPI_COMM_WORLD);
   write_deck(dir + "/run.xml", *strip_deck(dir, 14e-6));
   if (second != MPI_COMM_NULL) {
-    solver::Simulation sim(dir + "/run.xml", second, dir + "/run_checkpoint.h5");
+    solver::Simulation sim(dir + "/run.xml", second, checkpoint_in(dir));
     EXPECT_GT(sim.summary().restart_step, 0);
     sim.run();
   }

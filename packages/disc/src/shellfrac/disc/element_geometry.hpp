@@ -70,6 +70,19 @@ KOKKOS_INLINE_FUNCTION double area_jacobian(const double X[6][3], double xi1, do
   return norm3(c);
 }
 
+/// Orientation of the P2 map at (xi1, xi2) relative to the vertex triangle: (G_1 x G_2) . n_v / (2 A_v), with
+/// n_v the unit normal and A_v the area of the vertex triangle. 1 for straight-sided flat elements; <= 0 where
+/// the element is folded over itself (a mid-side node far outside it), theory.md §1.4.
+KOKKOS_INLINE_FUNCTION double orientation_ratio(const double X[6][3], double xi1, double xi2) {
+  double G[2][3], c[3], e1[3], e2[3], nv[3];
+  covariant_tangents(X, xi1, xi2, G);
+  cross3(G[0], G[1], c);
+  for (int k = 0; k < 3; ++k) e1[k] = X[1][k] - X[0][k], e2[k] = X[2][k] - X[0][k];
+  cross3(e1, e2, nv);
+  const double twice_area = norm3(nv);
+  return dot3(c, nv) / (twice_area * twice_area);
+}
+
 /// Reference area of the P2 element, sum_q w_q j0_q with the 6-point rule (theory.md §1.3, §6).
 KOKKOS_INLINE_FUNCTION double element_area(const double X[6][3]) {
   double a = 0.0;

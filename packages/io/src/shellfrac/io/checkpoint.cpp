@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <numeric>
 
+#include "shellfrac/core/digest.hpp"
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
 
@@ -13,7 +14,10 @@ namespace shellfrac::io {
 
 namespace {
 
-constexpr const char* format_tag = "shellfrac checkpoint 1";
+constexpr const char* format_tag = "shellfrac checkpoint 2";
+
+/// Rows per HDF5 chunk of a table (chunked storage carries the Fletcher32 checksum of every chunk).
+constexpr hsize_t rows_per_chunk = 4096;
 
 /// Closes an HDF5 handle at scope exit.
 struct Handle {
@@ -23,12 +27,15 @@ struct Handle {
   ~Handle() {
     if (id >= 0) close(id);
   }
+  Handle(Handle&& o) noexcept : id(o.id), close(o.close) { o.id = -1; }
   Handle(const Handle&) = delete;
   Handle& operator=(const Handle&) = delete;
 };
 
+/// A failed write names the file and stops the run with the output-error exit code (the previous checkpoint is
+/// untouched: the file being written is a temporary one).
 void check(bool ok, const std::string& path, const std::string& what) {
-  SHELLFRAC_REQUIRE(ok, path << ": " << what);
+  if (!ok) throw OutputError(path + ": " + what + " (disk full, quota, or the directory is gone?)");
 }
 
 void write_string_attribute(hid_t loc, const std::string& name, const std::string& value, const std::string& path) {
@@ -73,11 +80,67 @@ std::vector<std::string> attribute_names(hid_t loc) {
   return names;
 }
 
+/// Every scalar, string and table in a fixed order (maps are sorted): the broadcast buffer and the checksummed text.
+parallel::ByteWriter serialize(const CheckpointData& d) {
+  parallel::ByteWriter w;
+  w.put(std::int64_t(d.scalars.size()));
+  for (const auto& [k, v] : d.scalars) w.put_string(k), w.put(v);
+  w.put(std::int64_t(d.strings.size()));
+  for (const auto& [k, v] : d.strings) w.put_string(k), w.put_string(v);
+  w.put(std::int64_t(d.tables.size()));
+  for (const auto& [k, t] : d.tables)
+    w.put_string(k), w.put(std::int64_t(t.width)), w.put_vector(t.ids), w.put_vector(t.values);
+  return w;
+}
+
+CheckpointData deserialize(const std::vector<char>& buffer) {
+  CheckpointData d;
+  parallel::ByteReader r(buffer);
+  for (auto n = r.get<std::int64_t>(); n > 0; --n) {
+    const auto k = r.get_string();
+    d.scalars[k] = r.get<double>();
+  }
+  for (auto n = r.get<std::int64_t>(); n > 0; --n) {
+    const auto k = r.get_string();
+    d.strings[k] = r.get_string();
+  }
+  for (auto n = r.get<std::int64_t>(); n > 0; --n) {
+    const auto k = r.get_string();
+    CheckpointTable& t = d.tables[k];
+    t.width = static_cast<int>(r.get<std::int64_t>());
+    t.ids = r.get_vector<GlobalId>();
+    t.values = r.get_vector<double>();
+  }
+  return d;
+}
+
+std::string checksum(parallel::ByteWriter serialized) {
+  Digest digest;
+  digest.add_bytes(serialized.buffer().data(), serialized.buffer().size());
+  return digest.hex();
+}
+
+/// Creation properties of a table's dataset: chunked with a Fletcher32 checksum per chunk (empty tables are
+/// contiguous: there is nothing to check).
+Handle dataset_properties(int rank, const hsize_t* dims) {
+  Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  if (dims[0] == 0 || (rank == 2 && dims[1] == 0)) return dcpl;
+  const hsize_t chunk[2] = {std::min(dims[0], rows_per_chunk), rank == 2 ? dims[1] : 1};
+  H5Pset_chunk(dcpl.id, rank, chunk);
+  H5Pset_fletcher32(dcpl.id);
+  return dcpl;
+}
+
 void write_file(const std::string& path, const CheckpointData& d) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors are reported by us, not printed by HDF5
   const std::string tmp = path + ".tmp";
-  Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  // The 1.10 file format: the superblock and object headers (which hold the attributes) carry checksums too.
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+  H5Pset_libver_bounds(fapl.id, H5F_LIBVER_V110, H5F_LIBVER_LATEST);
+  Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id), H5Fclose);
   check(file.id >= 0, tmp, "cannot create the checkpoint file");
   write_string_attribute(file.id, "format", format_tag, tmp);
+  write_string_attribute(file.id, "checksum", checksum(serialize(d)), tmp);
   {
     Handle g(H5Gcreate2(file.id, "scalars", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
     for (const auto& [name, v] : d.scalars) {
@@ -97,13 +160,15 @@ void write_file(const std::string& path, const CheckpointData& d) {
     const hsize_t rows = t.ids.size(), dims[2] = {rows, hsize_t(t.width)};
     {
       Handle space(H5Screate_simple(1, &rows, nullptr), H5Sclose);
-      Handle ds(H5Dcreate2(g.id, "ids", H5T_NATIVE_INT64, space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+      const Handle dcpl = dataset_properties(1, &rows);
+      Handle ds(H5Dcreate2(g.id, "ids", H5T_NATIVE_INT64, space.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT), H5Dclose);
       check(ds.id >= 0 && (rows == 0 || H5Dwrite(ds.id, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT,
                                                    t.ids.data()) >= 0),
             tmp, "cannot write table " + name);
     }
     Handle space(H5Screate_simple(2, dims, nullptr), H5Sclose);
-    Handle ds(H5Dcreate2(g.id, "values", H5T_NATIVE_DOUBLE, space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+    const Handle dcpl = dataset_properties(2, dims);
+    Handle ds(H5Dcreate2(g.id, "values", H5T_NATIVE_DOUBLE, space.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT), H5Dclose);
     check(ds.id >= 0 && (t.values.empty() || H5Dwrite(ds.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
                                                          t.values.data()) >= 0),
           tmp, "cannot write table " + name);
@@ -120,11 +185,14 @@ CheckpointData read_file(const std::string& path) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors are reported by us, not printed by HDF5
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   if (file.id < 0) throw InputError(path + ": cannot open the checkpoint (missing, or not an HDF5 file)");
-  {
-    Handle attr(H5Aopen(file.id, "format", H5P_DEFAULT), H5Aclose);
-    if (attr.id < 0 || read_string_attribute(attr.id, path) != format_tag)
-      throw InputError(path + ": not a shellfrac checkpoint (no '" + std::string(format_tag) + "' format tag)");
-  }
+  const auto root_string = [&](const char* name) {
+    Handle attr(H5Aopen(file.id, name, H5P_DEFAULT), H5Aclose);
+    return attr.id < 0 ? std::string() : read_string_attribute(attr.id, path);
+  };
+  if (root_string("format") != format_tag)
+    throw InputError(path + ": not a checkpoint of this version of shellfrac (no '" + std::string(format_tag) +
+                     "' format tag; checkpoints of other versions or other programs are not read)");
+  const std::string stored_checksum = root_string("checksum");
   CheckpointData d;
   {
     Handle g(H5Gopen2(file.id, "scalars", H5P_DEFAULT), H5Gclose);
@@ -163,10 +231,13 @@ CheckpointData read_file(const std::string& path) {
     t.ids.resize(n), t.values.resize(n * dims[1]);
     if ((n > 0 && H5Dread(ids.id, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, t.ids.data()) < 0) ||
         (!t.values.empty() && H5Dread(vals.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, t.values.data()) < 0))
-      throw InputError(path + ": unreadable table " + name);
+      throw InputError(path + ": unreadable table " + name + " (a chunk fails its checksum: the file is corrupt)");
     if (!std::is_sorted(t.ids.begin(), t.ids.end())) throw InputError(path + ": table " + name + " is not sorted");
     d.tables[name] = std::move(t);
   }
+  if (checksum(serialize(d)) != stored_checksum)
+    throw InputError(path + ": the checkpoint's contents do not match its checksum: the file is corrupt (a damaged "
+                     "copy or disk?); restart from another checkpoint");
   return d;
 }
 
@@ -214,34 +285,9 @@ CheckpointData read_checkpoint(const std::string& path, MPI_Comm comm) {
   if (!error.empty()) throw InputError(error);
   // Broadcast: scalars, strings, tables.
   parallel::ByteWriter w;
-  if (parallel::rank(comm) == 0) {
-    w.put(std::int64_t(d.scalars.size()));
-    for (const auto& [k, v] : d.scalars) w.put_string(k), w.put(v);
-    w.put(std::int64_t(d.strings.size()));
-    for (const auto& [k, v] : d.strings) w.put_string(k), w.put_string(v);
-    w.put(std::int64_t(d.tables.size()));
-    for (const auto& [k, t] : d.tables)
-      w.put_string(k), w.put(std::int64_t(t.width)), w.put_vector(t.ids), w.put_vector(t.values);
-  }
+  if (parallel::rank(comm) == 0) w = serialize(d);
   parallel::broadcast(w.buffer(), 0, comm);
-  if (parallel::rank(comm) != 0) {
-    parallel::ByteReader r(w.buffer());
-    for (auto n = r.get<std::int64_t>(); n > 0; --n) {
-      const auto k = r.get_string();
-      d.scalars[k] = r.get<double>();
-    }
-    for (auto n = r.get<std::int64_t>(); n > 0; --n) {
-      const auto k = r.get_string();
-      d.strings[k] = r.get_string();
-    }
-    for (auto n = r.get<std::int64_t>(); n > 0; --n) {
-      const auto k = r.get_string();
-      CheckpointTable& t = d.tables[k];
-      t.width = static_cast<int>(r.get<std::int64_t>());
-      t.ids = r.get_vector<GlobalId>();
-      t.values = r.get_vector<double>();
-    }
-  }
+  if (parallel::rank(comm) != 0) d = deserialize(w.buffer());
   return d;
 }
 

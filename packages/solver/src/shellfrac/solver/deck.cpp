@@ -96,6 +96,7 @@ void read_output(Teuchos::ParameterList& pl, const params::Context& ctx, Deck& d
   d.checkpoint.step_interval = ck.get<int>("Step Interval");
   d.checkpoint.wall_minutes = ck.get<double>("Wall Interval");
   d.checkpoint.file = ck.get<std::string>("File");
+  d.checkpoint.keep = ck.get<int>("Keep");
   if (d.checkpoint.file.empty()) d.checkpoint.file = d.output.path("_checkpoint.h5");
   d.checkpoint.restart_from = ck.get<std::string>("Restart From");
   if (!d.checkpoint.restart_from.empty() && d.checkpoint.restart_from.front() != '/')
@@ -135,8 +136,11 @@ Teuchos::RCP<const Teuchos::ParameterList> CheckpointParams::valid_parameters() 
   pl->set("Step Interval", 0, "Write a checkpoint every N steps (0 = not by step count)", params::int_range(0, 1 << 30));
   pl->set("Wall Interval", 0.0, "Write a checkpoint every M minutes of wall time (0 = not by time)",
           params::non_negative_double());
-  pl->set("File", "", "Checkpoint file (HDF5); empty = <Output Directory>/<Base Name>_checkpoint.h5. It is replaced "
-                      "atomically; SIGUSR1 writes one, SIGTERM writes one and stops the run (exit code 4)");
+  pl->set("File", "", "Name of the checkpoint files (HDF5): a checkpoint at step N is <File without .h5>_step<N>.h5; "
+                      "empty = <Output Directory>/<Base Name>_checkpoint.h5. Each file is written atomically and "
+                      "carries checksums; SIGUSR1 writes one, SIGTERM writes one and stops the run (exit code 4)");
+  pl->set("Keep", 3, "How many of this run's checkpoints are kept (older ones are removed; the checkpoint a run "
+                     "restarted from is never written, replaced or removed)", params::int_range(1, 1000000));
   pl->set("Restart From", "", "Continue from this checkpoint (relative paths: to the deck's directory); empty = "
                               "start at t = 0; the time step is the deck's. The command-line option restart (shellfrac --restart FILE DECK) overrides it");
   return pl;

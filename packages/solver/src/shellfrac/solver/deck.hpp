@@ -38,7 +38,8 @@ struct OutputParams {
 struct CheckpointParams {
   int step_interval = 0;      ///< write every N steps (0 = never by count)
   double wall_minutes = 0;    ///< write every M minutes of wall time (0 = never by time)
-  std::string file;           ///< path; default <Output Directory>/<Base Name>_checkpoint.h5
+  std::string file;           ///< name of the series; default <Output Directory>/<Base Name>_checkpoint.h5
+  int keep = 3;               ///< checkpoints of this run kept (checkpoint_series.hpp)
   std::string restart_from;   ///< restart from this checkpoint ("" = start at t = 0)
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
 };

@@ -52,6 +52,10 @@ Teuchos::RCP<const Teuchos::ParameterList> TimeParams::valid_parameters() {
   pl->set("Rotary Inertia Scale", 1.0, "s_I >= 1 multiplies the rotary inertia rho h^3/12 (raises the stable step of "
                                        "thin shells; changes the dynamics; reported when used)",
           params::double_range(1.0, 1e6));
+  pl->set("Maximum Steps", 1e8,
+          "The run (also --check) is refused if it would take more steps than this: a guard against absurd time "
+          "steps from wrong units or tiny elements; raise it for a longer run",
+          params::positive_double());
   pl->set("Output Interval", 0.0, "Time between Exodus outputs [time]; 0 = first and last step only",
           params::non_negative_double());
   pl->set("History Interval", 1, "Steps between rows of the history CSV", params::int_range(1, 1 << 30));
@@ -83,6 +87,7 @@ TimeParams TimeParams::from_parameters(Teuchos::ParameterList& pl, const params:
                           ctx.file << ": '" << ctx.path << "': give either a Time Step or a Target Time Step (mass "
                                    << "scaling), not both");
   t.rotary_inertia_scale = pl.get<double>("Rotary Inertia Scale");
+  t.maximum_steps = pl.get<double>("Maximum Steps");
   t.output_interval = pl.get<double>("Output Interval");
   t.history_interval = pl.get<int>("History Interval");
   t.mass_damping = pl.get<double>("Mass Damping");

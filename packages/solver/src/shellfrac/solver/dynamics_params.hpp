@@ -29,6 +29,7 @@ struct TimeParams {
   double max_added_mass_fraction = 0.05;  ///< refuse mass scaling that adds more (unless forced)
   bool force_mass_scaling = false;        ///< accept any added mass
   double rotary_inertia_scale = 1.0;  ///< s_I >= 1 scales the rotary inertia rho h^3/12 (mass scaling)
+  double maximum_steps = 1e8;    ///< refuse a run planned longer (absurd time steps)
   double output_interval = 0.0;  ///< time between Exodus outputs; 0 = first and last step only
   int history_interval = 1;      ///< steps between history rows
   double mass_damping = 0.0;     ///< alpha of the damping force alpha m v (dynamic relaxation); 0 = none

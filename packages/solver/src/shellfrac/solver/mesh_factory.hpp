@@ -18,6 +18,7 @@ struct MeshParams {
   enum class Source { Rectangle, CylindricalPanel, Cylinder, File };
   Source source = Source::Rectangle;
   std::string file;  ///< resolved path (relative paths are relative to the deck's directory)
+  std::string deck;  ///< the deck's path (for messages)
   int refinements = 0;
   mesh::NonManifoldPolicy non_manifold = mesh::NonManifoldPolicy::Star;
   mesh::DiagonalPattern pattern = mesh::DiagonalPattern::Right;

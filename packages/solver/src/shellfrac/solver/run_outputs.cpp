@@ -172,15 +172,10 @@ void RunOutputs::flush_crack_log() {
   cracks_logged_ = activated;
 }
 
-void RunOutputs::write_checkpoint(const std::string& path) {
-  flush_crack_log();  // complete through the checkpoint's step (a restart keeps those rows)
-  write_checkpoint(path, model_.dynamics->checkpoint());
-}
-
-void RunOutputs::write_checkpoint(const std::string& path, io::CheckpointData state) {
+io::CheckpointData RunOutputs::checkpoint(io::CheckpointData state) const {
   state.scalars["e0"] = e0_;
   state.strings["deck"] = deck_.file;
-  io::write_checkpoint(path, state, model_.distributed->comm());
+  return state;
 }
 
 }  // namespace shellfrac::solver

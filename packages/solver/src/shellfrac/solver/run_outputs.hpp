@@ -45,10 +45,9 @@ class RunOutputs {
   void write_history();
   /// The crack log rows not yet written, if the global count of activated edges changed. Collective.
   void flush_crack_log();
-  /// The current state as a checkpoint at `path`, with the crack log complete through it. Collective.
-  void write_checkpoint(const std::string& path);
-  /// Writes `state` (an earlier copy of the state) as a checkpoint at `path`. Collective.
-  void write_checkpoint(const std::string& path, io::CheckpointData state);
+  /// `state` (ShellDynamics::checkpoint, now or earlier) with what a restart of this run needs besides the
+  /// state: the initial energy of the balance and the deck's name.
+  io::CheckpointData checkpoint(io::CheckpointData state) const;
   /// The Exodus file (rank 0's view: the set's first file for np > 1), for the run summary.
   const std::string& exodus_path() const { return exodus_path_; }
 

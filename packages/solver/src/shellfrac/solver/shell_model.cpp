@@ -94,6 +94,30 @@ void check_added_mass(const Deck& deck, const MassScaling& ms) {
                                        "set 'Force Mass Scaling')");
 }
 
+/// InputError naming the element when the P2 map of an element is folded (orientation ratio <= 1e-3 at an area
+/// point: a mid-side node far outside its triangle; docs/theory.md §1.4). The smallest such element id on any
+/// rank is named, with its worst ratio. Collective.
+void check_not_folded(const decomposition::DistributedMesh& dm, const std::string& mesh_name) {
+  constexpr double folded = 1e-3;
+  const double none = std::numeric_limits<double>::max();
+  double worst = none, first = none;  // the smallest folded element id (as a double: exact below 2^53)
+  for (LocalId le = 0; le < dm.num_owned(); ++le) {
+    double Xe[6][3], Te[3][3];
+    reference_nodes(dm, le, Xe, Te);
+    double r = std::numeric_limits<double>::max();
+    for (int q = 0; q < disc::tri6_rule.num_points; ++q)
+      r = std::min(r, disc::orientation_ratio(Xe, disc::tri6_rule.xi[q][0], disc::tri6_rule.xi[q][1]));
+    if (r <= folded && double(dm.element_gid(le)) < first) first = double(dm.element_gid(le)), worst = r;
+  }
+  const double bad = -parallel::max(-first, dm.comm());
+  if (bad == none) return;
+  const double ratio = -parallel::max(-(first == bad ? worst : none), dm.comm());
+  SHELLFRAC_INPUT_REQUIRE(false, mesh_name << ": element " << GlobalId(bad) + 1 << " is folded: at one of its quadrature "
+                                           << "points the area Jacobian is " << ratio << " times that of its vertex "
+                                           << "triangle (it must be positive; a mid-side node lies far outside the "
+                                           << "triangle?); fix the mesh");
+}
+
 }  // namespace
 
 std::vector<BlockSection> block_sections(const Deck& deck, const std::vector<std::string>& block_names) {
@@ -108,6 +132,7 @@ std::vector<BlockSection> block_sections(const Deck& deck, const std::vector<std
 ShellModel::ShellModel(const decomposition::DistributedMesh& d, const Deck& deck, const std::vector<BlockSection>& s)
     : dm(d), owned(d.num_owned()), overlap(d.num_overlap()), sections(s) {
   SHELLFRAC_REQUIRE(dm.nodes_per_element() == 6, "the DG shell needs TRI6 elements");
+  check_not_folded(dm, deck.mesh.file.empty() ? deck.file : deck.mesh.file);
   X.assign(overlap);
   for (LocalId le = 0; le < overlap; ++le)
     for (int A = 0; A < 6; ++A)
@@ -131,6 +156,7 @@ ShellModel::ShellModel(const decomposition::DistributedMesh& d, const Deck& deck
   // Element reference data, lifted edges, masses (selectively scaled), the stable step.
   element_refs.resize(owned), lifted.resize(owned), mass.assign(owned), inertia.assign(owned);
   MassScalingTally scaling;
+  TimeStepTally steps;
   const double rotary_scale = deck.time.rotary_inertia_scale;
   stable_dt = std::numeric_limits<double>::max();
   for (LocalId le = 0; le < owned; ++le) {
@@ -150,6 +176,7 @@ ShellModel::ShellModel(const decomposition::DistributedMesh& d, const Deck& deck
     sp.cx = deck.discretization.cx, sp.cT = deck.discretization.cT, sp.rotary_scale = rotary_scale;
     const double dt_e = disc::element_stable_dt(sp, disc::characteristic_length(Xe));
     const double factor = density_factor(deck.time, dt_e);
+    steps.add(le, dt_e);
     disc::hrz_lumped_mass(Xe, m.density * h, mass.at(le));
     disc::hrz_rotary_inertia(Xe, rotary_scale * m.density * h * h * h / 12, inertia.at(le));
     scaling.add(le, factor, mass.at(le));
@@ -161,6 +188,7 @@ ShellModel::ShellModel(const decomposition::DistributedMesh& d, const Deck& deck
   }
   stable_dt = -parallel::max(-stable_dt, dm.comm());  // global minimum (exact, rank-count independent)
   mass_scaling = scaling.global_result(dm);
+  time_step_survey = steps.global_result(dm);
   check_added_mass(deck, mass_scaling);
   build_interfaces(deck);
 }

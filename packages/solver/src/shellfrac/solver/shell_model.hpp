@@ -14,6 +14,7 @@
 #include "shellfrac/materials/elastic_resultant.hpp"
 #include "shellfrac/materials/resultant_plasticity.hpp"
 #include "shellfrac/solver/mass_scaling.hpp"
+#include "shellfrac/solver/time_step_survey.hpp"
 #include "shellfrac/solver/shell_state.hpp"
 
 namespace shellfrac::decomposition {
@@ -53,6 +54,7 @@ struct ShellModel {
   Rows<director_nodes, 1> inertia;           ///< lumped rotary inertia per director node (owned)
   double stable_dt = 0;                      ///< 2 / max omega over every element (before the safety factor)
   MassScaling mass_scaling;                  ///< what Target Time Step added (nothing without it)
+  TimeStepSurvey time_step_survey;           ///< the smallest and the median element step (before scaling)
   // Interfaces: every local one (dm.interfaces() order).
   std::vector<disc::DgInterfaceRef> interface_refs;  ///< the minus side's reference edge data
   std::vector<double> interface_beta_x, interface_beta_t;  ///< penalty constants (mean of the two sides)

@@ -14,6 +14,7 @@
 #include "shellfrac/io/exodus_results.hpp"
 #include "shellfrac/mesh/edge_topology.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
+#include "shellfrac/solver/checkpoint_series.hpp"
 #include "shellfrac/solver/mesh_sets.hpp"
 #include "shellfrac/solver/progress.hpp"
 #include "shellfrac/solver/run_outputs.hpp"
@@ -28,11 +29,16 @@ namespace {
 volatile std::sig_atomic_t received_signal = 0;
 extern "C" void on_signal(int sig) { received_signal = sig; }
 
-/// Installs the SIGTERM and SIGUSR1 handlers for its lifetime.
+}  // namespace
+
+void catch_stop_signals() { std::signal(SIGTERM, on_signal), std::signal(SIGUSR1, on_signal); }
+
+/// Installs the SIGTERM and SIGUSR1 handlers for its lifetime: a Simulation's whole life, set-up included (a
+/// signal during set-up is acted on after the first step). A signal caught since catch_stop_signals() counts.
 class SignalGuard {
  public:
   SignalGuard() : old_term_(std::signal(SIGTERM, on_signal)), old_usr1_(std::signal(SIGUSR1, on_signal)) {
-    received_signal = 0;
+    if (old_term_ != on_signal) received_signal = 0;
   }
   ~SignalGuard() { std::signal(SIGTERM, old_term_), std::signal(SIGUSR1, old_usr1_); }
   SignalGuard(const SignalGuard&) = delete;
@@ -43,6 +49,8 @@ class SignalGuard {
   void (*old_usr1_)(int);
 };
 
+namespace {
+
 /// Exodus frames every Output Interval (0: the first and the last state only). A frame is due when the time is
 /// within half a step of the next output time.
 class OutputSchedule {
@@ -51,9 +59,15 @@ class OutputSchedule {
     next_ = interval_;
   }
   bool due(double t, double dt) const { return t >= next_ - 0.5 * dt; }
-  /// Moves the next output time past t (the same sums whether the run started at 0 or restarted).
+  /// Moves the next output time past t (the same sums whether the run started at 0 or restarted). An interval
+  /// far below the time step gives a frame at every step instead of a loop that (almost) never ends.
   void pass(double t, double dt) {
-    while (next_ <= t + 0.5 * dt) next_ += interval_;
+    const double now = t + 0.5 * dt;
+    if (next_ <= now && (now - next_) / interval_ > 1e6) next_ = std::nextafter(now, HUGE_VAL);
+    while (next_ <= now) {
+      const double next = next_ + interval_;
+      next_ = next > next_ ? next : std::nextafter(now, HUGE_VAL);
+    }
   }
 
  private:
@@ -102,7 +116,8 @@ class StepEvents {
 /// the element fields), and the history rows as text.
 double estimated_result_bytes(const Deck& deck, GlobalId elements, long steps, double t) {
   const auto& tp = deck.time;
-  const double frames = (tp.output_interval > 0 ? std::floor((tp.end_time - t) / tp.output_interval) : 0) + 2;
+  const double frames =
+      std::min(double(steps), tp.output_interval > 0 ? std::floor((tp.end_time - t) / tp.output_interval) : 0) + 2;
   const double dg_nodes = 6.0 * double(elements);
   const double fixed = dg_nodes * 3 * 8 + dg_nodes * 4;
   const double per_frame = dg_nodes * 9 * 8 + double(elements) * (ShellDynamics::element_field_names().size() + 2) * 8;
@@ -111,29 +126,53 @@ double estimated_result_bytes(const Deck& deck, GlobalId elements, long steps, d
   return fixed + frames * per_frame + rows * columns * 16;
 }
 
+/// The message of a blow-up, after writing the last good state as a checkpoint.
+std::string stop_at_blow_up(const NumericalError& e, CheckpointSeries& checkpoints, const RunOutputs& out,
+                            const io::CheckpointData& last_good) {
+  const std::string file = checkpoints.write(out.checkpoint(last_good));
+  std::ostringstream os;
+  os << e.what() << ". The last good state (step " << long(last_good.scalars.at("step")) << ", time "
+     << last_good.scalars.at("time") << ") is in " << file
+     << (checkpoints.is_restart_file(file) ? " (the checkpoint this run started from)" : "")
+     << "; restart from it (--restart) with a smaller Time Step or Safety Factor";
+  return os.str();
+}
+
 }  // namespace
 
-Simulation::Simulation(const std::string& deck_file, MPI_Comm comm, const std::string& restart_file)
-    : comm_(comm), deck_(Deck::read(deck_file, comm)) {
+Simulation::Simulation(const std::string& deck_file, MPI_Comm comm, const std::string& restart_file,
+                       bool allow_physics_change)
+    : signals_(std::make_unique<SignalGuard>()),
+      comm_(comm),
+      deck_(Deck::read(deck_file, comm)),
+      allow_physics_change_(allow_physics_change) {
   if (!restart_file.empty()) deck_.checkpoint.restart_from = restart_file;
   model_ = build_run_model(deck_, comm);
+  fingerprint_ = RestartFingerprint::of(deck_, *model_.distributed);
   progress_interval_ = deck_.output.progress_interval;
   if (!deck_.checkpoint.restart_from.empty()) restart_from_checkpoint();
   resolve_probes();
   summarize();
+  check_time_step();
 }
 
 Simulation::~Simulation() = default;
 
-// The checkpoint is read and checked against this model before any output is written.
+// The checkpoint is read and checked against this deck and mesh before any output is written.
 void Simulation::restart_from_checkpoint() {
-  const auto data = io::read_checkpoint(deck_.checkpoint.restart_from, comm_);
+  const std::string& file = deck_.checkpoint.restart_from;
+  const auto data = io::read_checkpoint(file, comm_);
   const auto e0 = data.scalars.find("e0");
-  SHELLFRAC_INPUT_REQUIRE(e0 != data.scalars.end(),
-                          deck_.checkpoint.restart_from << ": not a checkpoint of a shellfrac run (no 'e0')");
-  model_.dynamics->restore(data);
+  SHELLFRAC_INPUT_REQUIRE(e0 != data.scalars.end(), file << ": not a checkpoint of a shellfrac run (no 'e0')");
+  fingerprint_.check(data, file, allow_physics_change_);
+  auto& dyn = *model_.dynamics;
+  dyn.restore(data);
+  SHELLFRAC_INPUT_REQUIRE(dyn.time() + 0.5 * dyn.time_step() < deck_.time.end_time,
+                          deck_.file << ": 'Time Integration->End Time' = " << deck_.time.end_time
+                                     << " is not after the time " << dyn.time() << " of the checkpoint " << file
+                                     << " (step " << dyn.step_count() << "): nothing to run; raise End Time");
   restart_e0_ = e0->second;
-  summary_.restart_step = model_.dynamics->step_count();
+  summary_.restart_step = dyn.step_count();
 }
 
 void Simulation::resolve_probes() {
@@ -164,11 +203,48 @@ void Simulation::summarize() {
   summary_.min_ghosts = -static_cast<GlobalId>(parallel::max(-double(dm.num_ghosts()), comm_));
 }
 
+std::string Simulation::element_description(GlobalId element, int block) const {
+  const std::string& name = model_.mesh->blocks.at(block).name;
+  const auto& section = deck_.blocks.at(name);
+  const auto& m = deck_.materials.at(section.material);
+  std::ostringstream os;
+  os << "element " << element + 1 << " of block '" << name << "' (material '" << section.material
+     << "': Young's Modulus " << m.youngs_modulus << ", Density " << m.density << "; Thickness " << section.thickness
+     << ")";
+  return os.str();
+}
+
+// A time step that is zero, denormal or gives an absurd number of steps is refused (also by --check), naming the
+// element that sets it; a step set by a few elements far below the median is reported (summary_.time_step_warning).
+void Simulation::check_time_step() {
+  const auto& dyn = *model_.dynamics;
+  const auto& survey = dyn.model().time_step_survey;
+  const auto& tp = deck_.time;
+  const std::string setter = element_description(survey.min_element, survey.min_block);
+  const double dt = dyn.time_step();
+  SHELLFRAC_INPUT_REQUIRE(std::isnormal(dt), deck_.file << ": the time step " << dt << " is zero or below the "
+                                                        << "smallest normal number: " << setter << " has the stable "
+                                                        << "step " << survey.min_dt << "; check the units");
+  const double planned = (tp.end_time - dyn.time()) / dt;
+  SHELLFRAC_INPUT_REQUIRE(planned <= tp.maximum_steps,
+                          deck_.file << ": the run would take " << planned << " steps (End Time " << tp.end_time
+                                     << ", time step " << dt << "), more than 'Time Integration->Maximum Steps' = "
+                                     << tp.maximum_steps << "; the step is set by " << setter
+                                     << "; check the units, remesh or use Target Time Step, or raise Maximum Steps");
+  if (tp.target_time_step > 0 || tp.time_step > 0 || survey.min_dt >= 0.1 * survey.median_dt) return;
+  std::ostringstream os;
+  const auto& c = survey.min_centroid;
+  os << setter << ", centroid (" << c[0] << ", " << c[1] << ", " << c[2] << "), has the smallest stable step "
+     << survey.min_dt << ", " << survey.min_dt / survey.median_dt << " of the median element's " << survey.median_dt
+     << ": it sets the time step of the whole mesh (a sliver?); remesh it, or use 'Time Integration->Target Time "
+        "Step' (selective mass scaling, docs/theory.md §8.1)";
+  summary_.time_step_warning = os.str();
+}
+
 std::string Simulation::exodus_path() const { return ResultPaths(deck_).exodus; }
 std::string Simulation::history_path() const { return ResultPaths(deck_).history; }
 std::string Simulation::fragments_path() const { return ResultPaths(deck_).fragments; }
 std::string Simulation::cracks_path() const { return ResultPaths(deck_).cracks; }
-std::string Simulation::checkpoint_path() const { return ResultPaths(deck_).checkpoint; }
 
 RunSummary Simulation::run() {
   auto& dyn = *model_.dynamics;
@@ -187,7 +263,11 @@ RunSummary Simulation::run() {
   }
   const auto start = std::chrono::steady_clock::now();
   bool frame_written = true, history_written = true;
-  const SignalGuard signals;
+  CheckpointSeries checkpoints(deck_.checkpoint, deck_.checkpoint.restart_from, fingerprint_, comm_);
+  const auto write_checkpoint = [&] {
+    out.flush_crack_log();  // complete through the checkpoint's step (a restart keeps those rows)
+    checkpoints.write(out.checkpoint(dyn.checkpoint()));
+  };
   ProgressReport progress(parallel::rank(comm_) == 0 ? &std::cout : nullptr, progress_interval_, dyn.step_count(),
                           dyn.time(), tp.end_time, dyn.time_step(), dyn.fracture());
   const long planned = std::lround(std::ceil((tp.end_time - dyn.time()) / dyn.time_step() - 0.5));
@@ -200,12 +280,7 @@ RunSummary Simulation::run() {
     try {
       dyn.step();
     } catch (const NumericalError& e) {
-      out.write_checkpoint(checkpoint_path(), last_good);
-      std::ostringstream os;
-      os << e.what() << ". The last good state (step " << long(last_good.scalars["step"]) << ", time "
-         << last_good.scalars["time"] << ") is in " << checkpoint_path()
-         << "; restart from it (--restart) with a smaller Time Step or Safety Factor";
-      throw NumericalError(os.str());
+      throw NumericalError(stop_at_blow_up(e, checkpoints, out, last_good));
     }
     if (dyn.step_count() % 50 == 0) last_good = dyn.checkpoint();
     history_written = dyn.step_count() % tp.history_interval == 0;
@@ -214,7 +289,7 @@ RunSummary Simulation::run() {
     if (frame_written) out.write_frame(), frames.pass(dyn.time(), dyn.time_step());
     const auto due = events.after_step(dyn.step_count());
     if (due.progress) progress.print(dyn.record(), e0);
-    if (due.checkpoint != CheckpointAction::none) out.write_checkpoint(checkpoint_path());
+    if (due.checkpoint != CheckpointAction::none) write_checkpoint();
     if (due.checkpoint == CheckpointAction::write_and_stop) {
       summary_.stopped_by_signal = true;
       break;
@@ -226,14 +301,15 @@ RunSummary Simulation::run() {
   if (!history_written) out.write_history();
   if (!frame_written) out.write_frame();
   const bool checkpointing = deck_.checkpoint.step_interval > 0 || deck_.checkpoint.wall_minutes > 0;
-  if (checkpointing && !summary_.stopped_by_signal) out.write_checkpoint(checkpoint_path());  // to continue later
+  if (checkpointing && !summary_.stopped_by_signal) write_checkpoint();  // to continue later
   summary_.steps = dyn.step_count() - std::max(summary_.restart_step, 0L);
   summary_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const int np = parallel::size(comm_);
   summary_.files = {np == 1 ? out.exodus_path()
                             : io::rank_file_name(out.exodus_path(), np, 0) + " ... (" + std::to_string(np) + " files)",
                     history_path()};
-  if (checkpointing || summary_.stopped_by_signal) summary_.files.push_back(checkpoint_path());
+  summary_.checkpoint = checkpoints.last();
+  if (!summary_.checkpoint.empty()) summary_.files.push_back(summary_.checkpoint);
   if (dyn.fracture()) {
     out.flush_crack_log();
     summary_.files.push_back(fragments_path());

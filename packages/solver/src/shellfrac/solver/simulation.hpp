@@ -5,6 +5,7 @@
 /// half-written — then step in time and write the results (run_outputs.hpp) and checkpoints.
 #include <mpi.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "shellfrac/solver/mass_scaling.hpp"
 #include "shellfrac/solver/mesh_sets.hpp"
 #include "shellfrac/solver/model_setup.hpp"
+#include "shellfrac/solver/restart_fingerprint.hpp"
 
 namespace shellfrac::solver {
 
@@ -26,18 +28,29 @@ struct RunSummary {
   std::vector<std::string> files;  ///< output files written (rank 0's view: base names)
   long restart_step = -1;          ///< the step the run restarted from (-1: started at t = 0)
   bool stopped_by_signal = false;  ///< SIGTERM: a checkpoint was written and the run stopped early
+  std::string checkpoint;          ///< the last checkpoint the run wrote ("" if none)
   std::vector<MeshSets::RegionSize> regions;  ///< the deck's regions and their sizes
   MassScaling mass_scaling;                   ///< what Target Time Step added (no elements: none)
+  std::string time_step_warning;  ///< a few small or badly shaped elements set the step ("" if not)
   bool static_relaxation = false;  ///< the deck asked for the static state (Static Relaxation)
   bool relaxed = false;            ///< ... and the run reached it before End Time
   double residual = 0;             ///< the last relative residual of the static relaxation
 };
 
-/// A run. Construction does all the input work (collective); run() writes the outputs.
+class SignalGuard;
+
+/// Catches SIGTERM and SIGUSR1 from now on (a program's first call): a signal before a Simulation exists is
+/// acted on after its first step, like one during its set-up.
+void catch_stop_signals();
+
+/// A run. Construction does all the input work (collective); run() writes the outputs. SIGTERM and SIGUSR1
+/// are caught from the start of construction to the end of the run.
 class Simulation {
  public:
-  /// `restart_file` (if not empty) overrides the deck's Checkpoint->Restart From.
-  Simulation(const std::string& deck_file, MPI_Comm comm = MPI_COMM_WORLD, const std::string& restart_file = "");
+  /// `restart_file` (if not empty) overrides the deck's Checkpoint->Restart From. The checkpoint must have been
+  /// written for this mesh and physics (restart_fingerprint.hpp); `allow_physics_change` accepts other physics.
+  Simulation(const std::string& deck_file, MPI_Comm comm = MPI_COMM_WORLD, const std::string& restart_file = "",
+             bool allow_physics_change = false);
   ~Simulation();
   /// Writes step 0, then (End Time > 0) integrates in time, writing Exodus at the output interval and the
   /// history every History Interval steps. Returns the summary. Collective.
@@ -53,16 +66,19 @@ class Simulation {
   std::string fragments_path() const;
   /// <dir>/<base>_cracks.csv: one row per activated edge (fracture runs only; ShellDynamics::crack_events).
   std::string cracks_path() const;
-  /// Path of the checkpoint file this run writes.
-  std::string checkpoint_path() const;
 
  private:
   void restart_from_checkpoint();
   void resolve_probes();
   void summarize();
+  void check_time_step();
+  std::string element_description(GlobalId element, int block) const;
 
+  std::unique_ptr<SignalGuard> signals_;  ///< first: the handlers cover the set-up
   MPI_Comm comm_;
   Deck deck_;
+  bool allow_physics_change_ = false;
+  RestartFingerprint fingerprint_;
   RunModel model_;
   std::vector<std::string> probe_names_;
   std::vector<std::vector<char>> probe_members_;
