@@ -46,6 +46,8 @@ class Simulation {
   void set_quiet() { progress_interval_ = 0; }
   const Deck& deck() const { return deck_; }
   const RunSummary& summary() const { return summary_; }
+  /// What the model check found valid but probably not meant (model_warnings), for rank 0 to print.
+  const std::vector<std::string>& warnings() const { return model_.warnings; }
   /// Path of the Exodus results (the per-rank set's base name when np > 1).
   std::string exodus_path() const;
   std::string history_path() const;
