@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "kokkos_options.hpp"
 #include "shellfrac/core/application.hpp"
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
@@ -38,6 +39,7 @@ const char* usage =
     "  --print-valid-parameters [FILE]  write a documented XML deck with every parameter and its default\n"
     "  --help                           this text\n"
     "  --version                        version\n"
+    "  --kokkos-threads=N, ...          Kokkos options (--kokkos-help lists them)\n"
     "\n"
     "Results go to the current directory unless the deck's Output sublist says otherwise:\n"
     "  <deck>.exo (np = 1) or the per-rank set <deck>.exo.<np>.<rank> (np > 1), and <deck>_history.csv.\n"
@@ -47,6 +49,30 @@ const char* usage =
     "stops with exit code 4 (restart with --restart). Exit codes: 0 done, 1 input error, 2 usage error,\n"
     "3 internal error or numerical blow-up, 4 stopped by SIGTERM after a checkpoint, 5 static equilibrium\n"
     "(Static Relaxation) not reached by End Time, 6 a result file could not be written (disk full?).\n";
+
+/// The run's plan on rank 0: mesh, partition, time step, mass scaling, regions, then any warnings.
+void print_summary(const shellfrac::solver::Simulation& sim, const std::string& deck) {
+  const auto& s = sim.summary();
+  std::cout << "shellfrac 0.1.0: " << deck << " on " << shellfrac::parallel::size() << " rank(s)\n"
+            << "  mesh: " << s.elements << " TRI6 elements, " << s.nodes << " nodes, " << s.edges << " edges ("
+            << s.interfaces << " interfaces, " << s.boundary_edges << " boundary, " << s.non_manifold_edges
+            << " non-manifold)\n"
+            << "  partition: " << s.min_owned << ".." << s.max_owned << " elements and " << s.min_ghosts << ".."
+            << s.max_ghosts << " ghosts per rank\n"
+            << "  time step: " << s.dt << " (stable estimate " << s.stable_dt << ", docs/theory.md §8)\n";
+  if (s.mass_scaling.elements > 0) {
+    const auto& ms = s.mass_scaling;
+    std::cout << "  mass scaling: " << ms.elements << " of " << s.elements << " elements scaled to reach the time "
+              << "step; added mass " << ms.added_mass << " = " << 100 * ms.added_mass / ms.physical_mass << " % of "
+              << ms.physical_mass << "; largest density factor " << ms.max_factor << " at element "
+              << ms.max_element + 1 << " (centroid " << ms.max_centroid[0] << ", " << ms.max_centroid[1] << ", "
+              << ms.max_centroid[2] << ")\n";
+  }
+  for (const auto& r : s.regions)
+    std::cout << "  region '" << r.name << "': " << r.elements << " elements, " << r.nodes << " nodes, " << r.edges
+              << " edges\n";
+  for (const auto& w : sim.warnings()) std::cerr << "shellfrac: warning: " << w << "\n";
+}
 
 int run(int argc, char** argv) {
   const bool root = shellfrac::parallel::rank() == 0;
@@ -103,28 +129,7 @@ int run(int argc, char** argv) {
   }
   shellfrac::solver::Simulation sim(deck, MPI_COMM_WORLD, restart, allow_physics_change);
   if (quiet) sim.set_quiet();
-  const auto& s = sim.summary();
-  if (root) {
-    std::cout << "shellfrac 0.1.0: " << deck << " on " << shellfrac::parallel::size() << " rank(s)\n"
-              << "  mesh: " << s.elements << " TRI6 elements, " << s.nodes << " nodes, " << s.edges << " edges ("
-              << s.interfaces << " interfaces, " << s.boundary_edges << " boundary, " << s.non_manifold_edges
-              << " non-manifold)\n"
-              << "  partition: " << s.min_owned << ".." << s.max_owned << " elements and " << s.min_ghosts << ".."
-              << s.max_ghosts << " ghosts per rank\n"
-              << "  time step: " << s.dt << " (stable estimate " << s.stable_dt << ", docs/theory.md §8)\n";
-    if (s.mass_scaling.elements > 0) {
-      const auto& ms = s.mass_scaling;
-      std::cout << "  mass scaling: " << ms.elements << " of " << s.elements << " elements scaled to reach the time "
-                << "step; added mass " << ms.added_mass << " = " << 100 * ms.added_mass / ms.physical_mass
-                << " % of " << ms.physical_mass << "; largest density factor " << ms.max_factor << " at element "
-                << ms.max_element + 1 << " (centroid " << ms.max_centroid[0] << ", " << ms.max_centroid[1] << ", "
-                << ms.max_centroid[2] << ")\n";
-    }
-    if (!s.time_step_warning.empty()) std::cerr << "shellfrac: warning: " << s.time_step_warning << "\n";
-    for (const auto& r : s.regions)
-      std::cout << "  region '" << r.name << "': " << r.elements << " elements, " << r.nodes << " nodes, " << r.edges
-                << " edges\n";
-  }
+  if (root) print_summary(sim, deck);
   if (check) {
     if (root) std::cout << "  deck and mesh are valid (--check: nothing written)\n";
     return 0;
@@ -154,6 +159,15 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   shellfrac::solver::catch_stop_signals();  // before MPI and the set-up: a batch system's signal is never lost
-  Tpetra::ScopeGuard scope(&argc, &argv);
-  return shellfrac::run_guarded("shellfrac", [&] { return run(argc, argv); });
+  // MPI first, so that only rank 0 reports a bad Kokkos option; Kokkos reads them in the ScopeGuard.
+  MPI_Init(&argc, &argv);
+  int code = 2;
+  if (const auto bad = shellfrac::app::kokkos_option_error({argv + 1, argv + argc}); !bad.empty()) {
+    if (shellfrac::parallel::rank() == 0) std::cerr << "shellfrac: error: " << bad << "\n\n" << usage;
+  } else {
+    Tpetra::ScopeGuard scope(&argc, &argv);
+    code = shellfrac::run_guarded("shellfrac", [&] { return run(argc, argv); });
+  }
+  MPI_Finalize();
+  return code;
 }

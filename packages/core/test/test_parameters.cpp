@@ -3,12 +3,17 @@
 // the file, the parameter path and the valid choices. The expected texts below are the contract.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include "shellfrac/core/deck_structure.hpp"
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parameters.hpp"
+#include "shellfrac/core/printable_text.hpp"
 
 using namespace shellfrac;
 
@@ -175,6 +180,119 @@ TEST(Parameters, TeuchosParseErrorsAreOneLineWithoutTeuchosInternals) {
     expect_contains(msg, "truncated_deck.xml: not a valid Teuchos XML parameter list: XML parse error at line 3");
     EXPECT_EQ(msg.find("Throw"), std::string::npos) << msg;
     EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+}
+
+namespace {
+std::string read_deck_error(const std::string& file) {
+  try {
+    params::read_deck(file);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+// Hostile input (docs/hostile_input.md): 10 000 nested sublists overflowed the stack in the XML conversion; the
+// nesting is limited before the parser sees it, and 64 levels still pass.
+TEST(Parameters, DeepNestingIsRefusedWithItsLine) {
+  const auto nested = [](int depth) {
+    std::string text = "<ParameterList name=\"x\">\n";
+    for (int i = 1; i < depth; ++i) text += "<ParameterList name=\"a\">\n";
+    for (int i = 0; i < depth; ++i) text += "</ParameterList>\n";
+    return text;
+  };
+  { std::ofstream("deep_deck.xml") << nested(10000); }
+  EXPECT_EQ(read_deck_error("deep_deck.xml"),
+            "deep_deck.xml: line 65: the XML elements are nested more than 64 levels deep (a deck needs only a few "
+            "levels of sublists)");
+  { std::ofstream("deep_ok_deck.xml") << nested(params::max_deck_nesting); }
+  EXPECT_EQ(read_deck_error("deep_ok_deck.xml"), "");
+}
+
+// Teuchos keeps the last of two entries with one name, silently. Both lines are named; comments, CDATA and the
+// same name in another sublist do not count.
+TEST(Parameters, EntriesGivenTwiceAreRefusedWithBothLines) {
+  {
+    std::ofstream("twice_deck.xml") << "<ParameterList name=\"x\">\n"
+                                       "  <Parameter name=\"a\" type=\"int\" value=\"1\"/>\n"
+                                       "  <!-- <Parameter name=\"b\" type=\"int\" value=\"1\"/> -->\n"
+                                       "  <ParameterList name=\"s\"><Parameter name=\"a\" type=\"int\" value=\"1\"/>\n"
+                                       "    <Parameter name=\"b\" type=\"int\" value=\"1\"/></ParameterList>\n"
+                                       "  <Parameter name = 'b' type=\"int\" value=\"2\"/>\n"
+                                       "  <Parameter type=\"int\" value=\"3\"\n name=\"a\"/>\n"
+                                       "</ParameterList>\n";
+  }
+  EXPECT_EQ(read_deck_error("twice_deck.xml"),
+            "twice_deck.xml: 'x->a' is given twice, on lines 2 and 7 (only the last would count); give each "
+            "parameter or sublist once");
+  {
+    std::ofstream("twice_list_deck.xml") << "<ParameterList name=\"x\">\n<ParameterList name=\"s\"/>\n"
+                                            "<ParameterList name=\"t\">\n<ParameterList name=\"s\"/>\n"
+                                            "</ParameterList>\n<ParameterList name=\"s\">\n</ParameterList>\n"
+                                            "</ParameterList>\n";
+  }
+  EXPECT_EQ(read_deck_error("twice_list_deck.xml"),
+            "twice_list_deck.xml: 'x->s' is given twice, on lines 2 and 6 (only the last would count); give each "
+            "parameter or sublist once");
+}
+
+// /dev/zero was read to 2.1 GB before the program died: decks are limited to 16 MiB, measured first when they
+// are regular files.
+TEST(Parameters, DeckSizeIsLimitedBeforeReading) {
+  EXPECT_EQ(read_deck_error("/dev/zero"),
+            "/dev/zero: the input deck is not a regular file and is longer than the 16 "
+            "MiB a deck may have (a device or an endless pipe?)");
+  EXPECT_EQ(read_deck_error("."), ".: is a directory, not an input deck");
+  { std::ofstream("huge_deck.xml").seekp(params::max_deck_bytes) << ' '; }
+  EXPECT_EQ(read_deck_error("huge_deck.xml"),
+            "huge_deck.xml: the input deck has 16777217 bytes, more than the 16 MiB a deck may have");
+  std::remove("huge_deck.xml");
+}
+
+// A double without a range of its own (a pressure, a normal velocity) must still be finite.
+TEST(Parameters, DoublesWithoutARangeMustBeFinite) {
+  Teuchos::ParameterList valid("Load");
+  valid.set("Pressure", 0.0, "p0 [force/length^2]");
+  for (double bad : {std::numeric_limits<double>::infinity(), std::nan("")}) {
+    Teuchos::ParameterList user;
+    user.set("Pressure", bad);
+    try {
+      params::validate(user, valid, {"deck.xml", "shellfrac->Loads->blast"});
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const InputError& e) {
+      expect_contains(e.what(), "deck.xml: invalid value '");
+      expect_contains(e.what(), "' for parameter 'shellfrac->Loads->blast->Pressure' (p0 [force/length^2]): value ");
+      expect_contains(e.what(), " is out of range: must be finite");
+    }
+  }
+  Teuchos::ParameterList user;
+  user.set("Pressure", -1e300);
+  params::validate(user, valid, {"deck.xml", "shellfrac->Loads->blast"});
+}
+
+// Names and text values go into Exodus files and messages: printable UTF-8 only.
+TEST(Parameters, NamesAndTextMustBePrintableUtf8) {
+  EXPECT_EQ(params::unprintable_part("plain name 12"), "");
+  EXPECT_EQ(params::unprintable_part("Stahl \xc3\xa4 \xe2\x82\xac \xf0\x9f\x94\xa9"), "");  // a-umlaut, euro, emoji
+  EXPECT_EQ(params::unprintable_part("ab\x01"), "a control character (byte 0x01) at position 3");
+  EXPECT_EQ(params::unprintable_part("\x7f"), "a control character (byte 0x7f) at position 1");
+  EXPECT_EQ(params::unprintable_part("a\tb"), "a control character (byte 0x09) at position 2");
+  EXPECT_EQ(params::unprintable_part("caf\xe9"), "a byte that is not UTF-8 (0xe9) at position 4");       // Latin-1
+  EXPECT_EQ(params::unprintable_part("\xc0\xaf"), "a byte that is not UTF-8 (0xc0) at position 1");      // overlong
+  EXPECT_EQ(params::unprintable_part("\xed\xa0\x80"), "a byte that is not UTF-8 (0xed) at position 1");  // surrogate
+  EXPECT_EQ(params::unprintable_part("x\xc2\x9b"), "a control character (U+009b) at position 2");
+  EXPECT_EQ(params::escaped(std::string("a\x01\xe9") + "b"), "a\\x01\\xe9b");
+  Teuchos::ParameterList pl;
+  pl.sublist("Regions").sublist("patch").set("Shape", std::string("Box\x1b[2J"));
+  try {
+    params::check_printable(pl, {"deck.xml", "shellfrac"});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(),
+                 "deck.xml: the value 'Box\\x1b[2J' of 'shellfrac->Regions->patch->Shape' has a control "
+                 "character (byte 0x1b) at position 4; names and text must be printable UTF-8");
   }
 }
 

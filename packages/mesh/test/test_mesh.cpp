@@ -8,8 +8,9 @@
 #include <set>
 
 #include "shellfrac/core/error.hpp"
-#include "shellfrac/disc/quadrature.hpp"
 #include "shellfrac/core/triangle_basis.hpp"
+#include "shellfrac/disc/quadrature.hpp"
+#include "shellfrac/mesh/coincident_nodes.hpp"
 #include "shellfrac/mesh/edge_topology.hpp"
 #include "shellfrac/mesh/generators.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
@@ -254,4 +255,26 @@ TEST(SerialMesh, CheckMeshNamesTheProblem) {
   m = base;
   m.side_sets[0].local_edges[0] = 3;
   expect_error(m, "invalid edge number");
+  // Names end up in Exodus files and messages: Latin-1 and control bytes are refused (docs/hostile_input.md).
+  m = base;
+  m.blocks[0].name = "pl\xe4te";
+  expect_error(m, "the name 'pl\\xe4te' of element block 1 has a byte that is not UTF-8 (0xe4) at position 3");
+  m = base;
+  m.node_sets[0].name = "left\n";
+  expect_error(m, "has a control character (byte 0x0a) at position 5; names must be printable UTF-8");
+}
+
+// Separate nodes at one point (duplicates left by a mesher, or a seam on purpose) are counted; the generated
+// meshes share their nodes, the closed cylinder included, and nodes that no element uses are ignored.
+TEST(SerialMesh, CoincidentNodesAreCountedWithAnExample) {
+  EXPECT_EQ(coincident_nodes(make_rectangle(2, 1, 4, 2)).count, 0);
+  EXPECT_EQ(coincident_nodes(make_cylinder(1, 2, 3, 8)).count, 0);
+  SerialMesh m;
+  m.coords = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {1, 1, 0}, {0, 0, 0}, {0, 1, 0}};
+  m.connectivity = {0, 1, 2, 5, 4, 3};  // two triangles of a square that do not share their diagonal
+  m.element_block = {0, 0};
+  m.blocks = {{"plate", 1}};
+  const auto c = coincident_nodes(m);  // node 6 repeats node 3 but is not used
+  EXPECT_EQ(c.count, 2);
+  EXPECT_EQ(c.example, (Vec3{0, 0, 0}));
 }

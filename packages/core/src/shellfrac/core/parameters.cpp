@@ -10,12 +10,12 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <sstream>
 #include <string_view>
 
+#include "shellfrac/core/deck_structure.hpp"
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
 
@@ -245,11 +245,8 @@ RCP<ParameterList> read_deck(const std::string& file, MPI_Comm comm) {
   std::string text;
   parallel::on_root_then_agree(
       [&] {
-        std::ifstream in(file);
-        SHELLFRAC_INPUT_REQUIRE(in.good(), file << ": cannot open the input deck (does the file exist and is it readable?)");
-        std::ostringstream ss;
-        ss << in.rdbuf();
-        text = ss.str();
+        text = read_deck_text(file);
+        check_deck_structure(text, file);
         try {
           Teuchos::getParametersFromXmlString(text);
         } catch (const std::exception& e) {
@@ -287,12 +284,15 @@ void validate(ParameterList& user, const ParameterList& valid, const Context& ct
                                                << (vt == "ParameterList" ? " (a <ParameterList name=...> element)" : "")
                                                << ". " << v->docString());
   }
-  // 2. values
+  // 2. values; a double without a range of its own must be finite
+  constexpr double max_double = std::numeric_limits<double>::max();
   for (auto it = user.begin(); it != user.end(); ++it) {
     const std::string& name = user.name(it);
     const Teuchos::ParameterEntry& v = valid.getEntry(name);
     auto validator = v.validator();
-    if (validator.is_null() || v.isList()) continue;
+    if (v.isList()) continue;
+    if (validator.is_null() && type_name(v) == "double") validator = double_range(-max_double, max_double);
+    if (validator.is_null()) continue;
     try {
       validator->validate(user.getEntry(name), name, ctx.path);
     } catch (const std::exception& e) {

@@ -556,7 +556,7 @@ ExodusResultsWriter::ExodusResultsWriter(const std::string& path, const ResultsL
       for (const char* suffix : component_suffix) l.nodal_names.push_back(v + suffix);
     l.element_names = layout.element_scalars;
     l.global_names = layout.global_variables;
-    l.info = layout.info;
+    if (rank == 0) l.info = layout.info;  // the deck once per set, not once per rank
     impl_->num_vectors = layout.nodal_vectors.size();
     impl_->writer.open(file_, l);
   } catch (...) {

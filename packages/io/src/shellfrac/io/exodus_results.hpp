@@ -34,7 +34,8 @@ struct ResultsLayout {
   std::vector<std::string> nodal_vectors;   ///< e.g. {"displ", "velocity", "director"}
   std::vector<std::string> element_scalars; ///< e.g. {"block", "rank"}
   std::vector<std::string> global_variables; ///< e.g. the history columns (one value per step, every file)
-  std::vector<std::string> info;            ///< information records (e.g. the expanded input deck lines)
+  std::vector<std::string> info;             ///< information records (e.g. the expanded input deck lines); written
+                                             ///< to the file of rank 0 only (the set has them once)
 };
 
 /// Longest block, set or variable name an Exodus II file stores (Exodus' MAX_NAME_LENGTH).

@@ -53,6 +53,12 @@ MaterialParams MaterialParams::from_parameters(const std::string& name, Teuchos:
     SHELLFRAC_INPUT_REQUIRE(has_yield && m.yield_stress > 0,
                             ctx.file << ": '" << ctx.path << "' has Model = Resultant Plasticity but no positive "
                                      << "'Yield Stress'");
+    SHELLFRAC_INPUT_REQUIRE(m.yield_stress >= min_yield_strain * m.youngs_modulus,
+                            ctx.file << ": '" << ctx.path << "->Yield Stress' = " << m.yield_stress << " is below "
+                                     << min_yield_strain << " x Young's Modulus = "
+                                     << min_yield_strain * m.youngs_modulus << "; no material yields at so small a "
+                                     << "strain (metals: 1e-4 to 1e-2), and the return map cannot resolve it "
+                                     << "(docs/theory.md §4.3)");
   } else {
     SHELLFRAC_INPUT_REQUIRE(m.yield_stress == 0 && m.hardening_modulus == 0 && !m.shear_in_yield,
                             ctx.file << ": '" << ctx.path << "' gives a yield stress, hardening modulus or shear yield, "

@@ -9,6 +9,10 @@
 
 namespace shellfrac::materials {
 
+/// Smallest yield strain Y0 / E that Resultant Plasticity accepts: far below any real material (metals yield at
+/// strains of 1e-4 to 1e-2); smaller ratios only arise from mistakes and defeat the return map.
+constexpr double min_yield_strain = 1e-6;
+
 /// Bulk material of a shell block (paper Tables 1-4). The elastic resultant law (theory.md §3) uses E, nu;
 /// Model = "Resultant Plasticity" (theory.md §4) adds the yield stress Y0, the hardening modulus H and whether the
 /// transverse shear force enters the yield function.

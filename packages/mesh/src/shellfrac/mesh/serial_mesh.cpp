@@ -6,6 +6,7 @@
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
+#include "shellfrac/core/printable_text.hpp"
 #include "shellfrac/core/triangle_basis.hpp"
 #include "shellfrac/mesh/edge_incidence.hpp"
 #include "shellfrac/mesh/vec3_ops.hpp"
@@ -40,6 +41,9 @@ void check_ids_and_names(const std::vector<Set>& sets, const char* kind, const s
                                              << "; ids must be positive");
     SHELLFRAC_INPUT_REQUIRE(ids.insert(s.id).second, source << ": two " << kind << "s have id " << s.id);
     SHELLFRAC_INPUT_REQUIRE(!s.name.empty(), source << ": " << kind << " " << s.id << " has an empty name");
+    const std::string bad = params::unprintable_part(s.name);
+    SHELLFRAC_INPUT_REQUIRE(bad.empty(), source << ": the name '" << params::escaped(s.name) << "' of " << kind << " "
+                                                << s.id << " has " << bad << "; names must be printable UTF-8");
     SHELLFRAC_INPUT_REQUIRE(names.insert(s.name).second, source << ": two " << kind << "s are named '" << s.name << "'");
   }
 }

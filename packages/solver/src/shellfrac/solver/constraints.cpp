@@ -1,11 +1,13 @@
 #include "shellfrac/solver/constraints.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "shellfrac/core/error.hpp"
+#include "shellfrac/core/parallel.hpp"
+#include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/disc/director.hpp"
 #include "shellfrac/disc/small_tensor.hpp"
-#include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/solver/mesh_sets.hpp"
 #include "shellfrac/solver/shell_model.hpp"
 
@@ -128,6 +130,41 @@ Constraints::Constraints(const std::vector<BoundaryCondition>& conditions, const
   }
   position_planes_.assign(planes_x);
   director_constraints_.assign(planes_t);
+  refuse_overridden_programs(deck_file);
+}
+
+// A Prescribed Velocity or Rotation whose every node is taken by another condition (composition rules of
+// constraints.hpp, docs/theory.md §10.1-10.2) would be ignored without a word: refuse it, naming both.
+void Constraints::refuse_overridden_programs(const std::string& deck_file) const {
+  using T = BoundaryCondition::Type;
+  const MPI_Comm comm = dm_.comm();
+  for (std::size_t ib = 0; ib < conditions_.size(); ++ib) {
+    const auto& bc = conditions_[ib];
+    const int b = static_cast<int>(ib);
+    const bool velocity = bc.type == T::PrescribedVelocity;
+    if (!velocity && bc.type != T::PrescribedRotation) continue;
+    std::int64_t acting = 0, effective = 0;
+    int taker = static_cast<int>(conditions_.size());
+    for (LocalId le = 0; le < dm_.num_owned(); ++le)
+      for (int A = 0; A < (velocity ? 6 : 3); ++A) {
+        const LocalId i = le * 6 + A;
+        if (!(acts_on_[i] & (1u << ib))) continue;
+        const int by = velocity ? (held_by_[i] >= 0 ? held_by_[i] : prescribing_[i]) : director_held_by_[le * 3 + A];
+        ++acting;
+        if (by == b)
+          ++effective;
+        else
+          taker = std::min(taker, by);
+      }
+    if (parallel::sum(acting, comm) == 0 || parallel::sum(effective, comm) > 0) continue;
+    const int t = static_cast<int>(-parallel::max(-double(taker), comm));
+    throw InputError(
+        deck_file + ": boundary condition '" + bc.name + "' (" +
+        (velocity ? "Prescribed Velocity" : "Prescribed Rotation") + ") has no effect: every " +
+        (velocity ? "node" : "director") + " of its Node Set '" + bc.node_set + "' is taken by boundary condition '" +
+        conditions_[t].name +
+        "', which takes precedence (docs/theory.md §10.1); remove one of them or give them different node sets");
+  }
 }
 
 Vec3 Constraints::prescribed_velocity(int bc, double t) const {

@@ -172,6 +172,9 @@ class Constraints {
     double t0[3], L0[3][3];
     double t_prev[3], g_prev[3], kinetic_prev;  // the previous step, for the reaction work
   };
+  /// InputError (collective) if every node of a Prescribed Velocity or Rotation is taken by another condition.
+  void refuse_overridden_programs(const std::string& deck_file) const;
+
   const decomposition::DistributedMesh& dm_;
   std::vector<BoundaryCondition> conditions_;
   std::vector<CosineRamp> ramps_;            // per condition

@@ -1,10 +1,14 @@
 #include "shellfrac/solver/deck.hpp"
 
 #include <sys/stat.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "shellfrac/core/error.hpp"
+#include "shellfrac/core/printable_text.hpp"
 #include "shellfrac/decomposition/partitioner.hpp"
 
 namespace shellfrac::solver {
@@ -89,7 +93,12 @@ void read_output(Teuchos::ParameterList& pl, const params::Context& ctx, Deck& d
   d.output.base_name = out.get<std::string>("Base Name");
   if (d.output.base_name.empty()) d.output.base_name = stem_of(file);
   d.output.directory = out.get<std::string>("Directory");
-  for (const auto& p : out.get<Teuchos::Array<std::string>>("Probes")) d.output.probes.push_back(p);
+  for (const auto& p : out.get<Teuchos::Array<std::string>>("Probes")) {
+    SHELLFRAC_INPUT_REQUIRE(std::find(d.output.probes.begin(), d.output.probes.end(), p) == d.output.probes.end(),
+                            file << ": 'shellfrac->Output->Probes' names '" << p
+                                 << "' twice; each probe gives its own history columns, so name each set once");
+    d.output.probes.push_back(p);
+  }
   d.output.progress_interval = out.get<double>("Progress Interval");
   auto& ck = pl.sublist("Checkpoint");
   params::validate(ck, *CheckpointParams::valid_parameters(), ctx / "Checkpoint");
@@ -106,6 +115,48 @@ void read_output(Teuchos::ParameterList& pl, const params::Context& ctx, Deck& d
     struct stat st {};
     SHELLFRAC_INPUT_REQUIRE(stat(d.output.directory.c_str(), &st) == 0 && S_ISDIR(st.st_mode),
                             file << ": 'Output->Directory' = '" << d.output.directory << "' is not an existing directory");
+    SHELLFRAC_INPUT_REQUIRE(access(d.output.directory.c_str(), W_OK | X_OK) == 0,
+                            file << ": 'Output->Directory' = '" << d.output.directory
+                                 << "' is not writable (no permission, or a read-only file system)");
+  }
+}
+
+/// Velocities above the fastest elastic wave speed sqrt(E/rho) of the deck's materials strain the shell by more
+/// than 100 % at once (a bar struck at speed v strains by v / c), and a pressure above the largest Young's
+/// modulus compresses the thickness by more than that: both are mistakes that would blow up in the first step.
+void check_magnitudes(const Deck& d, const params::Context& ctx) {
+  double c = 0, E = 0;
+  std::string fastest, stiffest;
+  for (const auto& [name, m] : d.materials) {
+    if (std::sqrt(m.youngs_modulus / m.density) > c) c = std::sqrt(m.youngs_modulus / m.density), fastest = name;
+    if (m.youngs_modulus > E) E = m.youngs_modulus, stiffest = name;
+  }
+  const auto speed = [&](double v, const std::string& path) {
+    SHELLFRAC_INPUT_REQUIRE(v <= c, ctx.file << ": '" << ctx.path << "->" << path << "' has the magnitude " << v
+                                             << ", more than the elastic wave speed sqrt(E/rho) = " << c
+                                             << " of material '" << fastest << "', the fastest of the deck; a "
+                                             << "velocity above it strains the shell by more than 100 % at once");
+  };
+  const auto norm = [](const Vec3& v) { return std::hypot(v[0], v[1], v[2]); };
+  for (const auto& iv : d.initial_velocities) {
+    speed(norm(iv.velocity), "Initial Conditions->" + iv.name + "->Velocity");
+    speed(std::abs(iv.normal_velocity), "Initial Conditions->" + iv.name + "->Normal Velocity");
+  }
+  for (const auto& bc : d.boundary_conditions)
+    if (bc.type == BoundaryCondition::Type::PrescribedVelocity)
+      speed(norm(bc.velocity), "Boundary Conditions->" + bc.name + "->Velocity");
+  for (const auto& l : d.loads) {
+    if (l.type != Load::Type::Pressure) continue;
+    const bool table = l.function == Load::Function::Table;
+    double p = std::abs(l.pressure);
+    if (table)
+      p = std::abs(*std::max_element(l.values.begin(), l.values.end(),
+                                     [](double a, double b) { return std::abs(a) < std::abs(b); }));
+    SHELLFRAC_INPUT_REQUIRE(p <= E, ctx.file << ": '" << ctx.path << "->Loads->" << l.name << "->"
+                                             << (table ? "Values" : "Pressure") << "' reaches " << p
+                                             << ", more than Young's Modulus " << E << " of material '" << stiffest
+                                             << "', the stiffest of the deck; a pressure above it compresses the "
+                                             << "shell by more than 100 %");
   }
 }
 
@@ -179,6 +230,7 @@ Deck Deck::from_parameters(const Teuchos::RCP<Teuchos::ParameterList>& deck, con
   d.expanded = deck;
   auto& pl = *d.expanded;
   const params::Context ctx{file, "shellfrac"};
+  params::check_printable(pl, ctx);  // names and text go into result files and messages
   // Top level: only the known sublists; user-named children of Blocks/Materials are validated one by one.
   Teuchos::ParameterList top("shellfrac");
   for (const char* name : {"Mesh", "Blocks", "Materials", "Partitioning", "Output", "Checkpoint", "Discretization",
@@ -195,6 +247,7 @@ Deck Deck::from_parameters(const Teuchos::RCP<Teuchos::ParameterList>& deck, con
   d.time = TimeParams::from_parameters(pl.sublist("Time Integration"), ctx / "Time Integration");
   d.fracture = FractureParams::from_parameters(pl.sublist("Fracture"), ctx / "Fracture");
   read_conditions(pl, ctx, d);
+  check_magnitudes(d, ctx);
   read_output(pl, ctx, d);
   return d;
 }

@@ -8,6 +8,7 @@
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/decomposition/partitioner.hpp"
 #include "shellfrac/io/exodus_results.hpp"
+#include "shellfrac/mesh/coincident_nodes.hpp"
 #include "shellfrac/mesh/edge_topology.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
 #include "shellfrac/solver/deck.hpp"
@@ -47,6 +48,26 @@ void check_orientation(const mesh::SerialMesh& m, const mesh::EdgeTopology& topo
                                         "(e.g. Gmsh: ReorientMesh / Reverse Surface)");
 }
 
+std::vector<std::string> model_warnings(const Deck& deck, const RunModel& r) {
+  std::vector<std::string> out;
+  const auto& m = *r.mesh;
+  if (const auto c = mesh::coincident_nodes(m); c.count > 0) {
+    std::ostringstream os;
+    os << m.source << ": " << c.count << " mesh node(s) lie at the position of another node without being shared "
+       << "with it, e.g. at (" << c.example[0] << ", " << c.example[1] << ", " << c.example[2] << "); the elements "
+       << "there are not connected: a seam or a crack if that is meant, otherwise merge the duplicate nodes";
+    out.push_back(os.str());
+  }
+  const double dt = r.dynamics->time_step(), end = deck.time.end_time;
+  if (end > 0 && end <= 0.5 * dt) {  // the time loop steps while t + dt/2 < End Time
+    std::ostringstream os;
+    os << deck.file << ": the time step " << dt << " is more than twice 'Time Integration->End Time' = " << end
+       << ", so no step is taken and only the initial state is written (are Young's Modulus and Density right?)";
+    out.push_back(os.str());
+  }
+  return out;
+}
+
 RunModel build_run_model(const Deck& deck, MPI_Comm comm) {
   RunModel r;
   r.mesh = std::make_unique<mesh::SerialMesh>(build_mesh(deck.mesh, comm));
@@ -56,6 +77,7 @@ RunModel build_run_model(const Deck& deck, MPI_Comm comm) {
   const auto part = decomposition::partition_elements(*r.mesh, *r.topology, parallel::size(comm), *deck.partition, comm);
   r.distributed = std::make_unique<decomposition::DistributedMesh>(*r.mesh, *r.topology, part, comm);
   r.dynamics = std::make_unique<ShellDynamics>(*r.mesh, *r.distributed, deck);
+  r.warnings = model_warnings(deck, r);
   return r;
 }
 

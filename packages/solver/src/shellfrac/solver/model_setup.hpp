@@ -7,6 +7,8 @@
 #include <mpi.h>
 
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace shellfrac::mesh {
 struct SerialMesh;
@@ -30,6 +32,7 @@ struct RunModel {
   std::unique_ptr<mesh::EdgeTopology> topology;
   std::unique_ptr<decomposition::DistributedMesh> distributed;
   std::unique_ptr<ShellDynamics> dynamics;
+  std::vector<std::string> warnings;  ///< model_warnings(), for the program to print (rank 0)
 };
 
 /// Builds the model of `deck` on `comm`. InputError (on every rank) for any problem. Collective.
@@ -39,6 +42,9 @@ RunModel build_run_model(const Deck& deck, MPI_Comm comm);
 /// and every section names a block of the mesh; block names fit Exodus. (Set names are checked where they are
 /// resolved, mesh_sets.hpp.)
 void check_deck_against_mesh(const Deck& deck, const mesh::SerialMesh& mesh);
+/// What is valid but probably not meant, one sentence each: separate mesh nodes at one point (a seam, or
+/// duplicate nodes from a mesher), and a time step so large that no step is taken before End Time.
+std::vector<std::string> model_warnings(const Deck& deck, const RunModel& model);
 /// Neighbouring elements must have consistent orientations (normals), except across non-manifold edges.
 void check_orientation(const mesh::SerialMesh& mesh, const mesh::EdgeTopology& topology);
 

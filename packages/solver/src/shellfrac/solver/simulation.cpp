@@ -215,7 +215,7 @@ std::string Simulation::element_description(GlobalId element, int block) const {
 }
 
 // A time step that is zero, denormal or gives an absurd number of steps is refused (also by --check), naming the
-// element that sets it; a step set by a few elements far below the median is reported (summary_.time_step_warning).
+// element that sets it; a step set by a few elements far below the median is reported (warnings()).
 void Simulation::check_time_step() {
   const auto& dyn = *model_.dynamics;
   const auto& survey = dyn.model().time_step_survey;
@@ -238,7 +238,7 @@ void Simulation::check_time_step() {
      << survey.min_dt << ", " << survey.min_dt / survey.median_dt << " of the median element's " << survey.median_dt
      << ": it sets the time step of the whole mesh (a sliver?); remesh it, or use 'Time Integration->Target Time "
         "Step' (selective mass scaling, docs/theory.md §8.1)";
-  summary_.time_step_warning = os.str();
+  model_.warnings.push_back(os.str());
 }
 
 std::string Simulation::exodus_path() const { return ResultPaths(deck_).exodus; }

@@ -31,7 +31,6 @@ struct RunSummary {
   std::string checkpoint;          ///< the last checkpoint the run wrote ("" if none)
   std::vector<MeshSets::RegionSize> regions;  ///< the deck's regions and their sizes
   MassScaling mass_scaling;                   ///< what Target Time Step added (no elements: none)
-  std::string time_step_warning;  ///< a few small or badly shaped elements set the step ("" if not)
   bool static_relaxation = false;  ///< the deck asked for the static state (Static Relaxation)
   bool relaxed = false;            ///< ... and the run reached it before End Time
   double residual = 0;             ///< the last relative residual of the static relaxation
@@ -59,6 +58,8 @@ class Simulation {
   void set_quiet() { progress_interval_ = 0; }
   const Deck& deck() const { return deck_; }
   const RunSummary& summary() const { return summary_; }
+  /// What the model check found valid but probably not meant (model_warnings), for rank 0 to print.
+  const std::vector<std::string>& warnings() const { return model_.warnings; }
   /// Path of the Exodus results (the per-rank set's base name when np > 1).
   std::string exodus_path() const;
   std::string history_path() const;
