@@ -225,6 +225,22 @@ class Reliability(unittest.TestCase):
                 self.assertEqual(history, reference, "flip %d ran on with other results" % i)
         self.assertGreater(refused, 30)
 
+    def test_a_failed_checkpoint_write_stops_with_one_line_and_keeps_the_last_checkpoint(self):
+        # The temporary file of the checkpoint at step 200 is a link to /dev/full: the write fails. It used to
+        # print 40 lines of HDF5 diagnostics and exit with 3 (internal error).
+        if not os.path.exists("/dev/full"):
+            self.skipTest("no /dev/full")
+        os.symlink("/dev/full", self.path("base_checkpoint_step200.h5.tmp"))
+        r = run([self.deck()], self.dir)
+        self.assertEqual(r.returncode, 6, r.stdout + r.stderr)
+        self.assertEqual(r.stderr.strip().splitlines(), [
+            "shellfrac: error: base_checkpoint_step200.h5.tmp: cannot create the checkpoint file (disk full, quota, or "
+            "the directory is gone?)"])
+        self.assertFalse(os.path.exists(self.path("base_checkpoint_step200.h5")))
+        self.deck(('value="2e-3"', 'value="2e-4"'))  # the checkpoint before the failure restarts
+        r = run(["base.xml", "--restart", "base_checkpoint_step100.h5"], self.dir)
+        self.assertEqual(r.returncode, 0, r.stderr)
+
     # --- meshes and time steps ----------------------------------------------------------------------------
 
     def write_msh(self, name, nodes, triangles, element_type):

@@ -117,6 +117,21 @@ TEST(ExodusCompare, StructuralDifferences) {
   expect_contains(d, "number of time steps differs: A 2, B 1");
 }
 
+// A DG node dropped from node set "odd", or an edge moved in side set "edges": the set is named.
+TEST(ExodusCompare, SetDifferencesAreReported) {
+  const auto a = test::expected(3, 7);
+  auto b = a;
+  b.node_sets[0].entries.pop_back();
+  auto d = compare_results(a, b, CompareTolerances{});
+  ASSERT_EQ(d.size(), 1u) << joined(d);
+  expect_contains(d[0], "node sets differ: 'odd' (id 5)");
+  b = a;
+  b.side_sets[0].edges[0] = (b.side_sets[0].edges[0] + 1) % 3;
+  d = compare_results(a, b, CompareTolerances{});
+  ASSERT_EQ(d.size(), 1u) << joined(d);
+  expect_contains(d[0], "side sets differ: 'edges' (id 7)");
+}
+
 TEST(ExodusCompare, ReportIsCapped) {
   const auto a = test::expected(3, 7);
   auto b = a;

@@ -3,6 +3,8 @@
 // in-memory data set test::expected(), written as files with write_results (a per-rank set is made by
 // writing chunks under the names rank_file_name(base, 3, r)).
 #include <gtest/gtest.h>
+
+#include <algorithm>
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -42,6 +44,21 @@ ExodusResults chunk(const ExodusResults& r, std::size_t begin, std::size_t end) 
   c.element_gids.assign(r.element_gids.begin() + begin, r.element_gids.begin() + end);
   c.element_block_ids.assign(r.element_block_ids.begin() + begin, r.element_block_ids.begin() + end);
   c.node_coords.assign(r.node_coords.begin() + begin * npe, r.node_coords.begin() + end * npe);
+  const auto mine = [&](GlobalId element) {
+    return std::binary_search(c.element_gids.begin(), c.element_gids.end(), element);
+  };
+  for (auto& set : c.node_sets) {
+    std::vector<GlobalId> kept;
+    for (GlobalId g : set.entries)
+      if (mine(g / GlobalId(npe))) kept.push_back(g);
+    set.entries = kept;
+  }
+  for (auto& set : c.side_sets) {
+    ResultsSet kept{set.name, set.id, {}, {}};
+    for (std::size_t i = 0; i < set.entries.size(); ++i)
+      if (mine(set.entries[i])) kept.entries.push_back(set.entries[i]), kept.edges.push_back(set.edges[i]);
+    set = kept;
+  }
   for (std::size_t s = 0; s < r.times.size(); ++s) {
     for (std::size_t v = 0; v < r.nodal[s].size(); ++v)
       c.nodal[s][v].assign(r.nodal[s][v].begin() + begin * npe, r.nodal[s][v].begin() + end * npe);

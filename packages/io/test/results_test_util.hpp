@@ -39,6 +39,19 @@ inline double nodal_value(int v, int c, GlobalId gid, int a, int step) {
 inline double element_value(int s, GlobalId gid, int step) { return std::cos(0.9 * gid + s) + step; }
 inline double global_value(int k, int step) { return std::exp(-0.5 * step) + k; }
 
+/// The test sets on elements [begin, end): node set "odd" (DG nodes with gid + a odd), an empty node set "none",
+/// side set "edges" (edge gid % 3 of the even elements).
+inline void add_sets(int npe, GlobalId begin, GlobalId end, std::vector<ResultsSet>& nodes,
+                     std::vector<ResultsSet>& sides) {
+  nodes = {{"odd", 5, {}, {}}, {"none", 9, {}, {}}};
+  sides = {{"edges", 7, {}, {}}};
+  for (GlobalId g = begin; g < end; ++g) {
+    for (int a = 0; a < npe; ++a)
+      if ((g + a) % 2 == 1) nodes[0].entries.push_back(g * npe + a);
+    if (g % 2 == 0) sides[0].entries.push_back(g), sides[0].edges.push_back(int(g % 3));
+  }
+}
+
 /// The layout of elements [begin, end) of the test mesh.
 inline ResultsLayout layout(int npe, GlobalId begin, GlobalId end) {
   ResultsLayout l;
@@ -50,6 +63,7 @@ inline ResultsLayout layout(int npe, GlobalId begin, GlobalId end) {
   l.element_scalars = scalars;
   l.global_variables = globals;
   l.info = info;
+  add_sets(npe, begin, end, l.node_sets, l.side_sets);
   for (GlobalId g = begin; g < end; ++g) {
     l.element_gids.push_back(g);
     l.element_block.push_back(block_of(g));
@@ -80,7 +94,9 @@ inline void write_steps(ExodusResultsWriter& w, const ResultsLayout& l) {
 /// The whole data set of elements 0..n-1 as read_results must return it.
 inline ExodusResults expected(int npe, GlobalId n) {
   ExodusResults r;
+  r.title = "io test";
   r.nodes_per_element = npe;
+  add_sets(npe, 0, n, r.node_sets, r.side_sets);
   r.block_names = block_names;
   r.block_ids = block_ids;
   r.info = info_read_back;
@@ -116,6 +132,9 @@ inline ExodusResults expected(int npe, GlobalId n) {
 
 /// Exact equality of two data sets (num_files excepted).
 inline void expect_same(const ExodusResults& a, const ExodusResults& b) {
+  EXPECT_EQ(a.title, b.title);
+  EXPECT_TRUE(a.node_sets == b.node_sets) << "node sets differ";
+  EXPECT_TRUE(a.side_sets == b.side_sets) << "side sets differ";
   EXPECT_EQ(a.nodes_per_element, b.nodes_per_element);
   EXPECT_EQ(a.element_gids, b.element_gids);
   EXPECT_EQ(a.element_block_ids, b.element_block_ids);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -71,6 +72,31 @@ void run_and_check(const std::string& deck_path, const mesh::SerialMesh& expecte
     }
     const double rank = res.element[0][1][i];
     EXPECT_TRUE(rank >= 0 && rank < parallel::size());
+  }
+  // The mesh's node and side sets on the DG copies: every copy of a set node, every set edge, whatever the ranks.
+  ASSERT_EQ(res.node_sets.size(), expected.node_sets.size());
+  for (std::size_t k = 0; k < expected.node_sets.size(); ++k) {
+    const auto& set = expected.node_sets[k];
+    std::vector<GlobalId> copies;
+    for (GlobalId e = 0; e < expected.num_elements(); ++e)
+      for (int a = 0; a < 6; ++a)
+        if (std::binary_search(set.nodes.begin(), set.nodes.end(), expected.node(e, a))) copies.push_back(6 * e + a);
+    EXPECT_EQ(res.node_sets[k].name, set.name);
+    EXPECT_EQ(res.node_sets[k].id, set.id);
+    EXPECT_FALSE(copies.empty()) << set.name;
+    EXPECT_EQ(res.node_sets[k].entries, copies) << "node set " << set.name;
+  }
+  ASSERT_EQ(res.side_sets.size(), expected.side_sets.size());
+  for (std::size_t k = 0; k < expected.side_sets.size(); ++k) {
+    const auto& set = expected.side_sets[k];
+    std::vector<std::pair<GlobalId, int>> sides;
+    for (std::size_t i = 0; i < set.elements.size(); ++i) sides.push_back({set.elements[i], set.local_edges[i]});
+    std::sort(sides.begin(), sides.end());
+    std::vector<std::pair<GlobalId, int>> written;
+    for (std::size_t i = 0; i < res.side_sets[k].entries.size(); ++i)
+      written.push_back({res.side_sets[k].entries[i], res.side_sets[k].edges[i]});
+    EXPECT_EQ(res.side_sets[k].name, set.name);
+    EXPECT_EQ(written, sides) << "side set " << set.name;
   }
 }
 

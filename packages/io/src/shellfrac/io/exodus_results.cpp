@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <ctime>
 #include <exception>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include <new>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/exodus/exodus_api.hpp"
@@ -46,7 +48,66 @@ struct FileLayout {
   std::vector<std::string> element_names;
   std::vector<std::string> global_names;  ///< global variables (one value per step)
   std::vector<std::string> info;
+  std::vector<ResultsSet> node_sets, side_sets;
 };
+
+/// Exodus side number of local edge k of a shell triangle (sides 1 and 2 are its faces).
+constexpr int first_edge_side = 3;
+
+/// The QA record: program, version, date and time of writing.
+int put_qa(int id) {
+  const std::time_t now = std::time(nullptr);
+  char date[MAX_STR_LENGTH + 1] = "", clock[MAX_STR_LENGTH + 1] = "";
+  std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
+  std::strftime(clock, sizeof clock, "%H:%M:%S", std::gmtime(&now));
+  char name[] = "shellfrac", version[] = "0.1.0";
+  char* record[1][4] = {{name, version, date, clock}};
+  return ex_put_qa(id, 1, record);
+}
+
+int put_coordinate_names(int id) {
+  char x[] = "x", y[] = "y", z[] = "z";
+  char* names[3] = {x, y, z};
+  return ex_put_coord_names(id, names);
+}
+
+/// Writes the sets of a file: layout element i is file element file_element[i] (1-based, block-grouped order),
+/// its DG node a is file node i * npe + a + 1.
+void put_sets(int id, const FileLayout& l, const std::vector<std::int64_t>& file_element, const std::string& path) {
+  const auto index = [&](GlobalId gid) {
+    const auto it = std::lower_bound(l.element_gids.begin(), l.element_gids.end(), gid);
+    SHELLFRAC_REQUIRE(it != l.element_gids.end() && *it == gid, path << ": a set refers to element " << gid + 1
+                                                                     << ", which is not in this file");
+    return static_cast<std::size_t>(it - l.element_gids.begin());
+  };
+  const auto npe = static_cast<GlobalId>(l.nodes_per_element);
+  for (const auto& set : l.node_sets) {
+    std::vector<std::int64_t> nodes;
+    for (GlobalId g : set.entries) nodes.push_back(static_cast<std::int64_t>(index(g / npe) * npe + g % npe) + 1);
+    SHELLFRAC_EXO_CHECK(ex_put_set_param(id, EX_NODE_SET, set.id, std::int64_t(nodes.size()), 0),
+                        path << ": node set " << set.name);
+    if (!nodes.empty())
+      SHELLFRAC_EXO_CHECK(ex_put_set(id, EX_NODE_SET, set.id, nodes.data(), nullptr), path << ": node set " << set.name);
+  }
+  for (const auto& set : l.side_sets) {
+    std::vector<std::int64_t> elements, sides;
+    for (std::size_t k = 0; k < set.entries.size(); ++k) {
+      elements.push_back(file_element[index(set.entries[k])]);
+      sides.push_back(set.edges[k] + first_edge_side);
+    }
+    SHELLFRAC_EXO_CHECK(ex_put_set_param(id, EX_SIDE_SET, set.id, std::int64_t(elements.size()), 0),
+                        path << ": side set " << set.name);
+    if (!elements.empty())
+      SHELLFRAC_EXO_CHECK(ex_put_set(id, EX_SIDE_SET, set.id, elements.data(), sides.data()),
+                          path << ": side set " << set.name);
+  }
+  std::vector<std::string> names;
+  for (const auto& set : l.node_sets) names.push_back(set.name);
+  if (!names.empty()) SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_NODE_SET, names), path);
+  names.clear();
+  for (const auto& set : l.side_sets) names.push_back(set.name);
+  if (!names.empty()) SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_SIDE_SET, names), path);
+}
 
 /// Writes one DG results file: the mesh part on open(), then one time step per put_step(). Used by both the
 /// per-rank writer and write_results (the join), so both produce the same file structure.
@@ -102,8 +163,12 @@ class FileWriter {
     p.num_nodes = static_cast<std::int64_t>(num_file_nodes_);
     p.num_elem = static_cast<std::int64_t>(ne);
     p.num_elem_blk = static_cast<std::int64_t>(l.block_ids.size());
+    p.num_node_sets = static_cast<std::int64_t>(l.node_sets.size());
+    p.num_side_sets = static_cast<std::int64_t>(l.side_sets.size());
     SHELLFRAC_EXO_CHECK(ex_put_init_ext(id, &p), path);
     SHELLFRAC_EXO_CHECK(exodus::put_info(id, l.info), path);
+    SHELLFRAC_EXO_CHECK(put_qa(id), path << ": QA record");
+    SHELLFRAC_EXO_CHECK(put_coordinate_names(id), path << ": coordinate names");
 
     {
       std::vector<double> x(num_file_nodes_, 0.0), y(num_file_nodes_, 0.0), z(num_file_nodes_, 0.0);
@@ -117,7 +182,7 @@ class FileWriter {
 
     // Blocks: file elements are grouped by block; DG node i*npe + a belongs to (layout) element i.
     const char* type = npe == 3 ? "TRISHELL3" : "TRISHELL6";
-    std::vector<std::int64_t> elem_map;
+    std::vector<std::int64_t> elem_map, file_element(ne);
     for (std::size_t b = 0; b < block_ids_.size(); ++b) {
       const auto& elems = block_elements_[b];
       SHELLFRAC_EXO_CHECK(ex_put_block(id, EX_ELEM_BLOCK, block_ids_[b], type,
@@ -128,6 +193,7 @@ class FileWriter {
       for (std::size_t i : elems) {
         for (int a = 0; a < npe; ++a) conn.push_back(static_cast<std::int64_t>(i * npe + a) + 1);
         elem_map.push_back(l.element_gids[i] + 1);
+        file_element[i] = static_cast<std::int64_t>(elem_map.size());
       }
       SHELLFRAC_EXO_CHECK(ex_put_conn(id, EX_ELEM_BLOCK, block_ids_[b], conn.data(), nullptr, nullptr),
                           path << ": element block " << block_ids_[b]);
@@ -143,6 +209,7 @@ class FileWriter {
       const std::int64_t placeholder_id = exodus::max_stored_int;
       SHELLFRAC_EXO_CHECK(ex_put_id_map(id, EX_NODE_MAP, &placeholder_id), path);
     }
+    put_sets(id, l, file_element, path);
 
     if (num_nodal_ > 0) {
       SHELLFRAC_EXO_CHECK(ex_put_variable_param(id, EX_NODAL, static_cast<int>(num_nodal_)), path);
@@ -222,6 +289,49 @@ std::int64_t checked_count(std::int64_t n, const std::string& path, const char* 
   return n;
 }
 
+/// The node sets (members as DG node ids, from the node id map `map`) or side sets (element gids from the element
+/// id map, edges from the shell edge sides 3..5) of a file, each sorted.
+std::vector<ResultsSet> read_sets(int id, ex_entity_type type, const std::vector<std::int64_t>& map,
+                                  const std::string& path) {
+  const bool nodes = type == EX_NODE_SET;
+  const char* what = nodes ? "node set" : "side set";
+  const std::int64_t n = checked_count(ex_inquire_int(id, nodes ? EX_INQ_NODE_SETS : EX_INQ_SIDE_SETS), path, what);
+  std::vector<ResultsSet> sets(static_cast<std::size_t>(n));
+  if (n == 0) return sets;
+  std::vector<std::int64_t> ids(static_cast<std::size_t>(n));
+  SHELLFRAC_EXO_INPUT_CHECK(ex_get_ids(id, type, ids.data()), path << ": cannot read the " << what << " ids");
+  const auto names = exodus::get_names(id, type, n, path);
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    auto& set = sets[k];
+    set.id = static_cast<int>(ids[k]);
+    set.name = names[k].empty() ? std::string(nodes ? "nodeset_" : "sideset_") + std::to_string(ids[k]) : names[k];
+    std::int64_t count = 0, factors = 0;
+    SHELLFRAC_EXO_INPUT_CHECK(ex_get_set_param(id, type, ids[k], &count, &factors),
+                              path << ": cannot read " << what << " " << ids[k]);
+    checked_count(count, path, what);
+    std::vector<std::int64_t> entries(static_cast<std::size_t>(count)), sides(nodes ? 0 : entries.size());
+    if (count > 0)
+      SHELLFRAC_EXO_INPUT_CHECK(ex_get_set(id, type, ids[k], entries.data(), nodes ? nullptr : sides.data()),
+                                path << ": cannot read " << what << " " << ids[k]);
+    std::vector<std::pair<GlobalId, int>> members;
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      SHELLFRAC_INPUT_REQUIRE(entries[i] >= 1 && entries[i] <= static_cast<std::int64_t>(map.size()),
+                              path << ": " << what << " " << ids[k] << " refers to entry " << entries[i]
+                                   << ", which the file does not have");
+      const int edge = nodes ? 0 : static_cast<int>(sides[i]) - first_edge_side;
+      SHELLFRAC_INPUT_REQUIRE(edge >= 0 && edge < 3, path << ": side set " << ids[k] << " has side " << sides[i]
+                                                          << " (shell edges are sides 3 to 5)");
+      members.push_back({map[static_cast<std::size_t>(entries[i] - 1)] - 1, edge});
+    }
+    std::sort(members.begin(), members.end());
+    for (const auto& [entry, edge] : members) {
+      set.entries.push_back(entry);
+      if (!nodes) set.edges.push_back(edge);
+    }
+  }
+  return sets;
+}
+
 /// Reads one results file; elements in file order (not yet sorted).
 ExodusResults read_file(const std::string& path) {
   std::error_code ec;
@@ -240,6 +350,7 @@ ExodusResults read_file(const std::string& path) {
   SHELLFRAC_INPUT_REQUIRE(num_blk > 0, path << not_ours << "no element blocks");
 
   ExodusResults r;
+  r.title = p.title;
   std::vector<std::int64_t> ids(static_cast<std::size_t>(num_blk));
   SHELLFRAC_EXO_INPUT_CHECK(ex_get_ids(id, EX_ELEM_BLOCK, ids.data()), path << ": cannot read element block ids");
   const auto names = exodus::get_names(id, EX_ELEM_BLOCK, num_blk, path);
@@ -287,8 +398,9 @@ ExodusResults read_file(const std::string& path) {
                                                            << " but the file has " << num_nodes << " nodes");
 
   // Id maps: element gid = map - 1; DG node of (element, a) must have id gid * npe + a + 1.
+  std::vector<std::int64_t> emap, nmap;
   if (num_elem > 0) {
-    std::vector<std::int64_t> emap(static_cast<std::size_t>(num_elem)), nmap(static_cast<std::size_t>(num_nodes));
+    emap.resize(static_cast<std::size_t>(num_elem)), nmap.resize(static_cast<std::size_t>(num_nodes));
     SHELLFRAC_EXO_INPUT_CHECK(ex_get_id_map(id, EX_ELEM_MAP, emap.data()), path << ": cannot read the element id map");
     SHELLFRAC_EXO_INPUT_CHECK(ex_get_id_map(id, EX_NODE_MAP, nmap.data()), path << ": cannot read the node id map");
     for (std::size_t i = 0; i < emap.size(); ++i) {
@@ -311,6 +423,9 @@ ExodusResults read_file(const std::string& path) {
       r.node_coords.push_back({x[n], y[n], z[n]});
     }
   }
+
+  r.node_sets = read_sets(id, EX_NODE_SET, nmap, path);
+  r.side_sets = read_sets(id, EX_SIDE_SET, emap, path);
 
   // Variables and steps.
   const std::int64_t num_steps = ex_inquire_int(id, EX_INQ_TIME);
@@ -388,6 +503,38 @@ ExodusResults read_file(const std::string& path) {
   return r;
 }
 
+/// The union of the sets of every file (each file declares the same sets), sorted.
+std::vector<ResultsSet> merge_sets(const std::vector<ExodusResults>& parts, const std::vector<std::string>& files,
+                                   std::vector<ResultsSet> ExodusResults::*sets) {
+  std::vector<ResultsSet> out = parts.front().*sets;
+  for (auto& set : out) set.entries.clear(), set.edges.clear();
+  for (std::size_t f = 0; f < parts.size(); ++f) {
+    const auto& mine = parts[f].*sets;
+    SHELLFRAC_INPUT_REQUIRE(mine.size() == out.size(), files[f] << " differs from " << files.front()
+                                                                << " (not the same data set): node or side sets");
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      SHELLFRAC_INPUT_REQUIRE(mine[k].name == out[k].name && mine[k].id == out[k].id,
+                              files[f] << " differs from " << files.front() << " (not the same data set): set "
+                                       << out[k].name);
+      out[k].entries.insert(out[k].entries.end(), mine[k].entries.begin(), mine[k].entries.end());
+      out[k].edges.insert(out[k].edges.end(), mine[k].edges.begin(), mine[k].edges.end());
+    }
+  }
+  for (auto& set : out) {
+    std::vector<std::pair<GlobalId, int>> members;
+    for (std::size_t i = 0; i < set.entries.size(); ++i)
+      members.push_back({set.entries[i], set.edges.empty() ? 0 : set.edges[i]});
+    std::sort(members.begin(), members.end());
+    const bool sides = !set.edges.empty();
+    set.entries.clear(), set.edges.clear();
+    for (const auto& [entry, edge] : members) {
+      set.entries.push_back(entry);
+      if (sides) set.edges.push_back(edge);
+    }
+  }
+  return out;
+}
+
 /// Merges files read by read_file into one data set sorted by element gid.
 ExodusResults merge(std::vector<ExodusResults>& parts, const std::vector<std::string>& files) {
   ExodusResults out;
@@ -406,6 +553,9 @@ ExodusResults merge(std::vector<ExodusResults>& parts, const std::vector<std::st
   out.global_names = first.global_names;
   out.global = first.global;  // every file of a set holds the same global values
   out.info = first.info;
+  out.title = first.title;
+  out.node_sets = merge_sets(parts, files, &ExodusResults::node_sets);
+  out.side_sets = merge_sets(parts, files, &ExodusResults::side_sets);
   out.num_files = static_cast<int>(parts.size());
   const std::string differs = " differs from " + files.front() + " (not the same data set): ";
   for (std::size_t f = 1; f < parts.size(); ++f) {
@@ -557,6 +707,8 @@ ExodusResultsWriter::ExodusResultsWriter(const std::string& path, const ResultsL
     l.element_names = layout.element_scalars;
     l.global_names = layout.global_variables;
     if (rank == 0) l.info = layout.info;  // the deck once per set, not once per rank
+    l.node_sets = layout.node_sets;
+    l.side_sets = layout.side_sets;
     impl_->num_vectors = layout.nodal_vectors.size();
     impl_->writer.open(file_, l);
   } catch (...) {
@@ -673,8 +825,10 @@ void write_results(const ExodusResults& results, const std::string& path) {
   SHELLFRAC_REQUIRE(r.nodal.size() == r.times.size() && r.element.size() == r.times.size(),
                     path << ": the number of steps of values and times differ");
   FileLayout l;
-  l.title = "shellfrac results";
+  l.title = r.title.empty() ? "shellfrac results" : r.title;
   l.nodes_per_element = r.nodes_per_element;
+  l.node_sets = r.node_sets;
+  l.side_sets = r.side_sets;
   l.element_gids = r.element_gids;
   l.block_names = r.block_names;
   l.block_ids = r.block_ids;
@@ -781,6 +935,14 @@ std::vector<std::string> compare_results(const ExodusResults& a, const ExodusRes
     return rep.finish();
   }
   const std::size_t npe = static_cast<std::size_t>(a.nodes_per_element);
+  for (const auto& [sa, sb, what] : {std::tuple{&a.node_sets, &b.node_sets, "node set"},
+                                     std::tuple{&a.side_sets, &b.side_sets, "side set"}}) {
+    if (*sa == *sb) continue;
+    std::string first = sa->size() != sb->size() ? std::string("their number") : std::string();
+    for (std::size_t k = 0; first.empty() && k < sa->size(); ++k)
+      if (!((*sa)[k] == (*sb)[k])) first = "'" + (*sa)[k].name + "' (id " + std::to_string((*sa)[k].id) + ")";
+    rep.add(std::string(what) + "s differ: " + first);
+  }
 
   // Elements: compare those present in both; report the others.
   std::vector<std::pair<std::size_t, std::size_t>> common;

@@ -11,6 +11,10 @@
 ///  * Parallel: np == 1 writes `path`; np > 1 writes one file per rank `path.<np>.<rank>` (Nemesis naming,
 ///    rank zero-padded to the width of np, e.g. run.exo.3.0, run.exo.12.03), which ParaView opens as one data set;
 ///    shellfrac_exojoin merges a set into one file.
+///  * The mesh's node sets and side sets (and the deck's regions) are written on the DG copies: a node set holds
+///    every DG copy of its nodes, a side set the element edges as shell edge sides 3..5 (edge k -> side k + 3).
+///    Every file of a set declares every set, possibly empty on a rank.
+///  * Coordinate names x, y, z; a QA record (program, version, date and time of writing).
 ///  * Each step is flushed (ex_update) so a crashed run leaves a readable file.
 #include <mpi.h>
 
@@ -21,6 +25,19 @@
 #include "shellfrac/core/types.hpp"
 
 namespace shellfrac::io {
+
+/// A node set or side set on the DG copies. Node set: `entries` are global DG node ids (element gid *
+/// nodes_per_element + a), ascending. Side set: `entries` are element gids and `edges` their local edges (0..2),
+/// ascending by (element, edge).
+struct ResultsSet {
+  std::string name;
+  int id = 0;
+  std::vector<GlobalId> entries;
+  std::vector<int> edges;  ///< side sets only
+  bool operator==(const ResultsSet& o) const {
+    return name == o.name && id == o.id && entries == o.entries && edges == o.edges;
+  }
+};
 
 /// What one rank writes: its owned elements and their DG nodes. Plain data (no Tpetra).
 struct ResultsLayout {
@@ -36,6 +53,7 @@ struct ResultsLayout {
   std::vector<std::string> global_variables; ///< e.g. the history columns (one value per step, every file)
   std::vector<std::string> info;             ///< information records (e.g. the expanded input deck lines); written
                                              ///< to the file of rank 0 only (the set has them once)
+  std::vector<ResultsSet> node_sets, side_sets;  ///< this rank's part of every set (same names and ids everywhere)
 };
 
 /// Longest block, set or variable name an Exodus II file stores (Exodus' MAX_NAME_LENGTH).
@@ -72,6 +90,7 @@ class ExodusResultsWriter {
 
 /// A results data set read back: one file or a whole per-rank set, merged and sorted by element global id.
 struct ExodusResults {
+  std::string title;
   int nodes_per_element = 3;
   std::vector<GlobalId> element_gids;   ///< ascending
   std::vector<int> element_block_ids;   ///< Exodus block id per element
@@ -86,6 +105,7 @@ struct ExodusResults {
   std::vector<std::string> global_names;     ///< global variables (the history columns of a shellfrac run)
   std::vector<std::vector<double>> global;   ///< global[step][var]
   std::vector<std::string> info;
+  std::vector<ResultsSet> node_sets, side_sets;  ///< merged over the files of a set
   int num_files = 1;
 };
 

@@ -5,12 +5,14 @@
 #include <regex>
 #include <sstream>
 
+#include "shellfrac/core/digest.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/io/exodus_results.hpp"
 #include "shellfrac/io/history.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
 #include "shellfrac/solver/deck.hpp"
+#include "shellfrac/solver/mesh_sets.hpp"
 #include "shellfrac/solver/model_setup.hpp"
 #include "shellfrac/solver/shell_dynamics.hpp"
 
@@ -18,13 +20,16 @@ namespace shellfrac::solver {
 
 namespace {
 
-/// The expanded deck as Exodus information records (at most 80 characters each).
-std::vector<std::string> info_records(const Teuchos::ParameterList& deck) {
+/// The program, the deck's name and the digest of its expanded text, then the expanded deck, as Exodus
+/// information records (at most 80 characters each).
+std::vector<std::string> info_records(const Teuchos::ParameterList& deck, const std::string& file) {
   Teuchos::ParameterList pl = deck;
   params::strip_validators(pl);
   std::ostringstream os;
   Teuchos::writeParameterListToXmlOStream(pl, os);
-  std::vector<std::string> lines;
+  Digest digest;
+  digest.add(os.str());
+  std::vector<std::string> lines = {"shellfrac 0.1.0", "deck: " + file, "expanded deck digest: " + digest.hex()};
   std::istringstream is(os.str());
   for (std::string line; std::getline(is, line);)
     for (std::size_t i = 0; i < line.size() || i == 0; i += 80) lines.push_back(line.substr(i, 80));
@@ -44,6 +49,36 @@ void remove_stale_results(const std::string& path) {
     if (std::regex_match(entry.path().filename().string(), set_file)) fs::remove(entry.path(), ec);
 }
 
+/// The mesh's node and side sets, then the deck's regions (ids after the mesh's), on the owned elements' DG
+/// copies: a node set holds every DG copy of its mesh nodes, a side set the owned element edges.
+void add_sets(const Deck& deck, const RunModel& model, io::ResultsLayout& layout) {
+  const auto& dm = *model.distributed;
+  const auto& mesh = *model.mesh;
+  const GlobalId npe = dm.nodes_per_element();
+  const MeshSets sets(mesh, deck.file, deck.regions);
+  const std::string what = "the results' sets";
+  const auto add_nodes = [&](const std::string& name, int id) {
+    const auto member = sets.node_set(what, name, false);
+    io::ResultsSet set{name, id, {}, {}};
+    for (LocalId le = 0; le < dm.num_owned(); ++le)
+      for (int a = 0; a < npe; ++a)
+        if (member[dm.mesh_node(le, a)]) set.entries.push_back(dm.element_gid(le) * npe + a);
+    layout.node_sets.push_back(std::move(set));
+  };
+  const auto add_sides = [&](const std::string& name, int id) {
+    const auto sides = sets.side_set(what, name);
+    io::ResultsSet set{name, id, {}, {}};
+    for (LocalId le = 0; le < dm.num_owned(); ++le)
+      for (int k = 0; k < 3; ++k)
+        if (sides.count({dm.element_gid(le), k})) set.entries.push_back(dm.element_gid(le)), set.edges.push_back(k);
+    layout.side_sets.push_back(std::move(set));
+  };
+  int node_id = 0, side_id = 0;
+  for (const auto& s : mesh.node_sets) add_nodes(s.name, s.id), node_id = std::max(node_id, s.id);
+  for (const auto& s : mesh.side_sets) add_sides(s.name, s.id), side_id = std::max(side_id, s.id);
+  for (const auto& r : deck.regions) add_nodes(r.name, ++node_id), add_sides(r.name, ++side_id);
+}
+
 /// The Exodus layout of the owned elements: blocks, DG nodes, the nodal vectors and element fields, and the
 /// history columns as global variables (names cut to the length Exodus readers take).
 io::ResultsLayout results_layout(const Deck& deck, const RunModel& model, const std::vector<std::string>& columns) {
@@ -55,13 +90,14 @@ io::ResultsLayout results_layout(const Deck& deck, const RunModel& model, const 
   layout.nodal_vectors = {"displ", "velocity", "director"};
   layout.element_scalars = {"block", "rank"};
   for (const auto& name : ShellDynamics::element_field_names()) layout.element_scalars.push_back(name);
-  layout.info = info_records(*deck.expanded);
+  layout.info = info_records(*deck.expanded, deck.file);
   for (const auto& c : columns) layout.global_variables.push_back(c.substr(0, io::max_global_name_length));
   for (LocalId le = 0; le < dm.num_owned(); ++le) {
     layout.element_gids.push_back(dm.element_gid(le));
     layout.element_block.push_back(dm.element_block(le));
     for (int a = 0; a < dm.nodes_per_element(); ++a) layout.node_coords.push_back(dm.node_coords(le, a));
   }
+  add_sets(deck, model, layout);
   return layout;
 }
 
