@@ -94,3 +94,26 @@ TEST(ExactSum, BatchAllreduceEqualsSingleOnes) {
   EXPECT_TRUE(std::isnan(batch[2].value()));
   EXPECT_TRUE(std::isnan(c.value()));
 }
+
+// Packed partial sums (as the fragment table sends them) add up to the same bits as one sum of all values;
+// reference: the cancellation values above, split into three parts.
+TEST(ExactSum, PackedPartsAddUpExactly) {
+  const std::vector<double> values = {1e16, 0.1, 1e-300, -1e16, 0.2, 1e300, -0.3, -1e300, 1.0};
+  ExactSum whole;
+  shellfrac::parallel::ByteWriter w;
+  for (int part = 0; part < 3; ++part) {
+    ExactSum s;
+    for (int k = part; k < int(values.size()); k += 3) s.add(values[k]), whole.add(values[k]);
+    s.pack(w);
+  }
+  ExactSum sum, empty;
+  shellfrac::parallel::ByteReader r(w.buffer());
+  while (!r.done()) sum += ExactSum::unpack(r);
+  EXPECT_EQ(sum.value(), whole.value());
+  EXPECT_EQ(sum.value(), 1.0 + 1e-300 + std::ldexp(1.0, -55));
+  shellfrac::parallel::ByteWriter w0;
+  empty.pack(w0);
+  shellfrac::parallel::ByteReader r0(w0.buffer());
+  EXPECT_EQ(ExactSum::unpack(r0).value(), 0.0);
+  EXPECT_TRUE(r0.done());
+}

@@ -1,5 +1,7 @@
 #include "shellfrac/core/exact_sum.hpp"
 
+#include "shellfrac/core/parallel.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -101,6 +103,24 @@ double ExactSum::value() const {
   const int low = top - 2 > 0 ? top - 2 : 0;
   const double r = static_cast<double>(std::ldexp(v, low * digit_bits - bias));
   return negative ? -r : r;
+}
+
+void ExactSum::pack(parallel::ByteWriter& w) const {
+  int lo = 0, hi = num_digits;
+  while (lo < hi && digit_[lo] == 0) ++lo;
+  while (hi > lo && digit_[hi - 1] == 0) --hi;
+  w.put(std::int32_t(lo)), w.put(std::int32_t(hi)), w.put(pending_), w.put(std::int8_t(nonfinite_ ? 1 : 0));
+  for (int k = lo; k < hi; ++k) w.put(digit_[k]);
+}
+
+ExactSum ExactSum::unpack(parallel::ByteReader& r) {
+  ExactSum s;
+  const int lo = r.get<std::int32_t>(), hi = r.get<std::int32_t>();
+  SHELLFRAC_REQUIRE(0 <= lo && lo <= hi && hi <= num_digits, "a packed exact sum has digits " << lo << ".." << hi);
+  s.pending_ = r.get<std::int64_t>();
+  s.nonfinite_ = r.get<std::int8_t>() != 0;
+  for (int k = lo; k < hi; ++k) s.digit_[k] = r.get<std::int64_t>();
+  return s;
 }
 
 }  // namespace shellfrac

@@ -13,6 +13,11 @@
 
 namespace shellfrac {
 
+namespace parallel {
+class ByteWriter;
+class ByteReader;
+}  // namespace parallel
+
 class ExactSum {
  public:
   /// Adds x exactly. A NaN or infinite x makes value() NaN.
@@ -25,6 +30,10 @@ class ExactSum {
   static void allreduce(std::vector<ExactSum>& sums, MPI_Comm comm);
   /// The sum rounded to a double.
   double value() const;
+  /// Appends the accumulator to `w` compactly (its range of nonzero digits), for messages of many sums.
+  void pack(parallel::ByteWriter& w) const;
+  /// Reads an accumulator written by pack.
+  static ExactSum unpack(parallel::ByteReader& r);
 
  private:
   static constexpr int digit_bits = 32;

@@ -124,6 +124,7 @@ std::vector<T> all_gather(const std::vector<T>& local, MPI_Comm comm) {
   return out;
 }
 
+template std::vector<char> all_gather(const std::vector<char>&, MPI_Comm);
 template std::vector<int> all_gather(const std::vector<int>&, MPI_Comm);
 template std::vector<std::int64_t> all_gather(const std::vector<std::int64_t>&, MPI_Comm);
 template std::vector<double> all_gather(const std::vector<double>&, MPI_Comm);

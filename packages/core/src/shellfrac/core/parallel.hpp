@@ -65,6 +65,8 @@ class ByteReader {
     const auto n = get<std::uint64_t>();
     return std::string(take(n), n);
   }
+  /// Whether everything has been read.
+  bool done() const { return pos_ >= buf_.size(); }
 
  private:
   const char* take(std::size_t n);

@@ -2,14 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
+#include "shellfrac/core/exact_sum.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/materials/elastic_resultant.hpp"
 #include "shellfrac/solver/cohesive_interface.hpp"
 #include "shellfrac/solver/force_assembly.hpp"
+#include "shellfrac/solver/ghost_exchange.hpp"
 #include "shellfrac/solver/mesh_sets.hpp"
 #include "shellfrac/solver/shell_model.hpp"
 
@@ -47,14 +50,12 @@ Fracture::Fracture(const FractureParams& fr, const MeshSets& sets, const ShellMo
         0.5 * (ma.fracture_energy + mb.fracture_energy), fr.alpha1, fr.alpha2, fr.alpha3);
   }
   enabled_ = parallel::any(any, dm_.comm());
-  if (!enabled_) return;
-  std::vector<GlobalId> mine;
-  for (const auto& fc : ifs)
-    if (fc.owned) mine.insert(mine.end(), {fc.gid, dm_.element_gid(fc.minus), dm_.element_gid(fc.plus)});
-  const auto all = parallel::all_gather(mine, dm_.comm());
-  for (std::size_t k = 0; k + 2 < all.size(); k += 3) all_interfaces_.push_back({all[k], all[k + 1], all[k + 2]});
-  std::sort(all_interfaces_.begin(), all_interfaces_.end());
+  label_.resize(dm_.num_overlap());
+  for (LocalId le = 0; le < dm_.num_overlap(); ++le) label_[le] = dm_.element_gid(le);
+  if (enabled_) label_exchange_ = std::make_unique<GhostExchange>(dm_, std::initializer_list<int>{1});
 }
+
+Fracture::~Fracture() = default;
 
 void Fracture::nucleate(long step, double t1, ShellState& s, ShellModel& model, const ForceAssembly& assembly) {
   const auto& ifs = dm_.interfaces();
@@ -159,67 +160,87 @@ std::vector<std::vector<double>> Fracture::crack_events() {
   return rows;
 }
 
-// Fragments: connected components of the elements through interfaces that are not fully separated, by
-// union-find over the global interface list (the same on every rank); recomputed only when the global number
-// of separated interfaces has changed.
+// Fragments: connected components of the elements through interfaces that are not fully separated, labelled by
+// their smallest element id. Each rank joins its overlap elements through its local interfaces (union-find),
+// then repeats: every local piece takes the smallest label of its elements, the ghosts take their owners'
+// labels; until no owned label changes on any rank. Recomputed only when the global number of separated
+// interfaces has changed.
 GlobalId Fracture::fragments(const ShellState& s) const {
-  std::vector<GlobalId> mine;
   const auto& ifs = dm_.interfaces();
-  for (std::size_t i = 0; i < ifs.size(); ++i)
-    if (ifs[i].owned && s.mode[i] == separated) mine.push_back(ifs[i].gid);
-  const GlobalId count = parallel::sum(static_cast<std::int64_t>(mine.size()), dm_.comm());
+  std::int64_t separated_here = 0;
+  for (std::size_t i = 0; i < ifs.size(); ++i) separated_here += ifs[i].owned && s.mode[i] == separated;
+  const GlobalId count = parallel::sum(separated_here, dm_.comm());
   if (count == fragments_at_) return fragments_;
-  auto cut = parallel::all_gather(mine, dm_.comm());
-  std::sort(cut.begin(), cut.end());
-  const GlobalId ne = dm_.num_global_elements();
-  fragment_root_.resize(ne);
-  for (GlobalId e = 0; e < ne; ++e) fragment_root_[e] = e;
-  const auto find = [&](GlobalId e) {
-    while (fragment_root_[e] != e) e = fragment_root_[e] = fragment_root_[fragment_root_[e]];
+  const LocalId n = dm_.num_overlap();
+  std::vector<LocalId> root(n);
+  for (LocalId le = 0; le < n; ++le) root[le] = le;
+  const auto find = [&](LocalId e) {
+    while (root[e] != e) e = root[e] = root[root[e]];
     return e;
   };
-  for (const auto& [gid, a, b] : all_interfaces_) {
-    if (std::binary_search(cut.begin(), cut.end(), gid)) continue;
-    const GlobalId ra = find(a), rb = find(b);
-    if (ra != rb) fragment_root_[std::max(ra, rb)] = std::min(ra, rb);  // the root is the smallest id
+  for (std::size_t i = 0; i < ifs.size(); ++i) {
+    if (s.mode[i] == separated) continue;
+    const LocalId a = find(ifs[i].minus), b = find(ifs[i].plus);
+    if (a != b) root[std::max(a, b)] = std::min(a, b);
   }
-  fragments_ = 0;
-  for (GlobalId e = 0; e < ne; ++e) {
-    fragment_root_[e] = find(e);
-    fragments_ += fragment_root_[e] == e;
+  for (LocalId le = 0; le < n; ++le) root[le] = find(le), label_[le] = dm_.element_gid(le);
+  std::vector<double> labels(n);
+  for (bool changed = true; changed;) {
+    std::vector<GlobalId> smallest(n, std::numeric_limits<GlobalId>::max());
+    for (LocalId le = 0; le < n; ++le) smallest[root[le]] = std::min(smallest[root[le]], label_[le]);
+    bool mine = false;
+    for (LocalId le = 0; le < n; ++le) {
+      mine |= le < dm_.num_owned() && smallest[root[le]] != label_[le];
+      label_[le] = smallest[root[le]];
+      labels[le] = double(label_[le]);  // element ids are below 2^53: exact as doubles
+    }
+    label_exchange_->import_ghost_rows(0, {RowBuffer{labels.data(), 1}});
+    for (LocalId le = dm_.num_owned(); le < n; ++le) label_[le] = static_cast<GlobalId>(labels[le]);
+    changed = parallel::any(mine, dm_.comm());
   }
+  std::int64_t roots = 0;
+  for (LocalId le = 0; le < dm_.num_owned(); ++le) roots += label_[le] == dm_.element_gid(le);
+  fragments_ = parallel::sum(roots, dm_.comm());
   fragments_at_ = count;
   return fragments_;
 }
 
 std::vector<std::vector<double>> Fracture::fragment_table(const ShellState& s, const ShellModel& model) const {
   if (enabled_) fragments(s);
-  constexpr int nv = 9;  // element gid, fragment root, m, m x (3), m v (3)
-  std::vector<double> mine(model.owned * nv, 0.0);
+  // This rank's piece of each fragment: its element count and the exact sums of m, m x, m v.
+  struct Piece {
+    std::int64_t elements = 0;
+    std::array<ExactSum, 7> sums;
+  };
+  std::map<GlobalId, Piece> pieces;
   for (LocalId le = 0; le < model.owned; ++le) {
-    double* r = &mine[le * nv];
-    const GlobalId gid = dm_.element_gid(le);
-    r[0] = double(gid), r[1] = enabled_ ? double(fragment_root_[gid]) : 0.0;
+    Piece& p = pieces[enabled_ ? label_[le] : 0];
+    ++p.elements;
     for (int A = 0; A < 6; ++A) {
       const double m = *model.mass.at(le, A);
-      r[2] += m;
-      for (int c = 0; c < 3; ++c) r[3 + c] += m * s.x.at(le, A)[c], r[6 + c] += m * s.v.at(le, A)[c];
+      p.sums[0].add(m);
+      for (int c = 0; c < 3; ++c) p.sums[1 + c].add(m * s.x.at(le, A)[c]), p.sums[4 + c].add(m * s.v.at(le, A)[c]);
     }
   }
-  const auto all = parallel::all_gather(mine, dm_.comm());
-  std::vector<std::size_t> order(all.size() / nv);
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return all[a * nv] < all[b * nv]; });
-  std::map<GlobalId, std::vector<double>> frag;  // root -> {elements, m, m x, m v}
-  for (std::size_t i : order) {
-    auto& f = frag[GlobalId(all[i * nv + 1])];
-    f.resize(8, 0.0);
-    f[0] += 1;
-    for (int k = 0; k < 7; ++k) f[1 + k] += all[i * nv + 2 + k];
+  parallel::ByteWriter w;
+  for (const auto& [label, p] : pieces) {
+    w.put(std::int64_t(label)), w.put(p.elements);
+    for (const auto& sum : p.sums) sum.pack(w);
+  }
+  const auto all = parallel::all_gather(w.buffer(), dm_.comm());
+  std::map<GlobalId, Piece> fragments;
+  parallel::ByteReader r(all);
+  while (!r.done()) {
+    Piece& f = fragments[r.get<std::int64_t>()];
+    f.elements += r.get<std::int64_t>();
+    for (auto& sum : f.sums) sum += ExactSum::unpack(r);
   }
   std::vector<std::vector<double>> rows;
-  for (const auto& [root, f] : frag)
-    rows.push_back({double(root + 1), f[0], f[1], f[2] / f[1], f[3] / f[1], f[4] / f[1], f[5], f[6], f[7]});
+  for (const auto& [label, f] : fragments) {
+    const double m = f.sums[0].value();
+    rows.push_back({double(label + 1), double(f.elements), m, f.sums[1].value() / m, f.sums[2].value() / m,
+                    f.sums[3].value() / m, f.sums[4].value(), f.sums[5].value(), f.sums[6].value()});
+  }
   return rows;
 }
 

@@ -5,6 +5,7 @@
 /// (connected pieces through edges that are not fully separated). The cohesive forces themselves are computed
 /// by the interface kernel (force_assembly.hpp).
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@ class DistributedMesh;
 namespace shellfrac::solver {
 
 class ForceAssembly;
+class GhostExchange;
 class MeshSets;
 struct ShellModel;
 
@@ -29,6 +31,9 @@ class Fracture {
   /// > 0, and it is in params.edges ('all' or a side set: InputError if the mesh has none of that name).
   /// Collective.
   Fracture(const FractureParams& params, const MeshSets& sets, const ShellModel& model);
+  ~Fracture();
+  Fracture(const Fracture&) = delete;
+  Fracture& operator=(const Fracture&) = delete;
 
   /// Whether any interface of the mesh may break (the same on every rank).
   bool enabled() const { return enabled_; }
@@ -48,13 +53,16 @@ class Fracture {
   /// on every rank and any rank count). Collective.
   std::vector<std::vector<double>> crack_events();
   static std::vector<std::string> crack_event_columns();
-  /// Number of fragments; recomputes them when the global number of separated interfaces changed. Collective.
+  /// Number of fragments; recomputes them when the global number of separated interfaces changed: connected
+  /// components through the interfaces not separated, labelled by their smallest element id (local union-find,
+  /// then the labels of the ghosts from their owners until no label changes; no rank sees the whole mesh).
+  /// Collective.
   GlobalId fragments(const ShellState& s) const;
-  /// Fragment of each global element: the smallest element id of its piece (after fragments()).
-  GlobalId fragment_of(GlobalId element) const { return fragment_root_[element]; }
+  /// Fragment of overlap element le: the smallest element id of its piece (after fragments()).
+  GlobalId fragment_of(LocalId le) const { return label_[le]; }
   /// One row per fragment, in increasing fragment id: {fragment id (smallest element id + 1), elements, mass,
-  /// centre of mass x/y/z, momentum x/y/z}, summed over elements in global-id order (rank-count independent).
-  /// Collective; the rows are the same on every rank.
+  /// centre of mass x/y/z, momentum x/y/z}, as exact sums (rank-count independent). Each rank sends only its
+  /// pieces of fragments. Collective; the rows are the same on every rank.
   std::vector<std::vector<double>> fragment_table(const ShellState& s, const ShellModel& model) const;
   /// Damage of owned element le: the largest delta_max / delta_f over its edges' points, 1 if separated.
   double damage(const ShellState& s, const ShellModel& model, LocalId le) const;
@@ -71,10 +79,10 @@ class Fracture {
   std::vector<char> breakable_;  // per local interface
   std::vector<materials::CohesiveParams> cohesive_;
   std::vector<double> crack_log_;  // activations of owned interfaces not yet reported, one row each
-  std::vector<std::array<GlobalId, 3>> all_interfaces_;  // (gid, minus element, plus element) of every interface
+  std::unique_ptr<GhostExchange> label_exchange_;  // the fragment labels of the ghosts (fracture runs)
   mutable GlobalId fragments_at_ = -1;  // the number of separated interfaces the cache belongs to
   mutable GlobalId fragments_ = 0;
-  mutable std::vector<GlobalId> fragment_root_;
+  mutable std::vector<GlobalId> label_;  // per overlap element: its fragment (smallest element id)
 };
 
 }  // namespace shellfrac::solver

@@ -176,7 +176,7 @@ void ShellDynamics::element_fields(std::vector<std::vector<double>>& fields) con
   }
   if (s.fracture.enabled()) s.fracture.fragments(s.state);
   for (LocalId le = 0; le < model.owned; ++le)
-    fields[5][le] = s.fracture.enabled() ? double(s.fracture.fragment_of(model.dm.element_gid(le)) + 1) : 1.0;
+    fields[5][le] = s.fracture.enabled() ? double(s.fracture.fragment_of(le) + 1) : 1.0;
 }
 
 void ShellDynamics::nodal_fields(std::vector<Vec3>& displacement, std::vector<Vec3>& velocity,
