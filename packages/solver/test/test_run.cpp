@@ -127,6 +127,36 @@ TEST(Run, GmshCurvedSurface) {
   run_and_check(dir + "/curved.xml", expected);
 }
 
+// Output->Fields: only the chosen nodal vectors and element fields are written, in file order; the history stays
+// whole as global variables. A name that is no field is refused (the deck reference lists the fields).
+TEST(Run, OutputFieldsSelectTheWrittenFields) {
+  const auto dir = work_dir("fields");
+  auto deck = panel_deck("shell", dir);
+  deck->sublist("Output").set("Fields", Teuchos::Array<std::string>(std::vector<std::string>{"damage", "displ", "rank"}));
+  write_deck(dir + "/fields.xml", *deck);
+  solver::Simulation sim(dir + "/fields.xml");
+  sim.run();
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (parallel::rank() == 0) {
+    const auto res = io::read_results(sim.exodus_path());
+    EXPECT_EQ(res.nodal_names, (std::vector<std::string>{"displ_x", "displ_y", "displ_z"}));
+    EXPECT_EQ(res.element_names, (std::vector<std::string>{"rank", "damage"}));
+    EXPECT_FALSE(res.global_names.empty());
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  deck->sublist("Output").set("Fields", Teuchos::Array<std::string>(std::vector<std::string>{"displacement"}));
+  write_deck(dir + "/fields.xml", *deck);
+  try {
+    solver::Simulation bad(dir + "/fields.xml");
+    ADD_FAILURE() << "Fields = {displacement} accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'Output->Fields' names 'displacement', which is not a result field; the "
+                                         "fields are 'displ' 'velocity' 'director' 'block' 'rank'"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 namespace {
 /// Expects Simulation(deck) to throw an InputError containing every phrase, and the directory to stay empty
 /// but for the deck.

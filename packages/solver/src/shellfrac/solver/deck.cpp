@@ -10,6 +10,7 @@
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/printable_text.hpp"
 #include "shellfrac/decomposition/partitioner.hpp"
+#include "shellfrac/solver/shell_dynamics.hpp"
 
 namespace shellfrac::solver {
 
@@ -100,6 +101,20 @@ void read_output(Teuchos::ParameterList& pl, const params::Context& ctx, Deck& d
     d.output.probes.push_back(p);
   }
   d.output.progress_interval = out.get<double>("Progress Interval");
+  auto valid = nodal_result_names();
+  for (const auto& f : element_result_names()) valid.push_back(f);
+  for (const auto& f : out.get<Teuchos::Array<std::string>>("Fields")) {
+    SHELLFRAC_INPUT_REQUIRE(std::find(valid.begin(), valid.end(), f) != valid.end(),
+                            file << ": 'Output->Fields' names '" << f << "', which is not a result field; the fields "
+                                 << "are" << [&] {
+                                      std::ostringstream os;
+                                      for (const auto& v : valid) os << " '" << v << "'";
+                                      return os.str();
+                                    }());
+    SHELLFRAC_INPUT_REQUIRE(std::find(d.output.fields.begin(), d.output.fields.end(), f) == d.output.fields.end(),
+                            file << ": 'Output->Fields' names '" << f << "' twice");
+    d.output.fields.push_back(f);
+  }
   auto& ck = pl.sublist("Checkpoint");
   params::validate(ck, *CheckpointParams::valid_parameters(), ctx / "Checkpoint");
   d.checkpoint.step_interval = ck.get<int>("Step Interval");
@@ -162,6 +177,14 @@ void check_magnitudes(const Deck& d, const params::Context& ctx) {
 
 }  // namespace
 
+std::vector<std::string> nodal_result_names() { return {"displ", "velocity", "director"}; }
+
+std::vector<std::string> element_result_names() {
+  std::vector<std::string> names = {"block", "rank"};
+  for (const auto& f : ShellDynamics::element_field_names()) names.push_back(f);
+  return names;
+}
+
 std::string OutputParams::path(const std::string& suffix) const {
   return (directory.empty() ? std::string() : directory + "/") + base_name + suffix;
 }
@@ -176,6 +199,11 @@ Teuchos::RCP<const Teuchos::ParameterList> OutputParams::valid_parameters() {
           "done, steps per second, elapsed time, estimated time to the end, energy balance error relative to the "
           "energy put in, activated and separated edges; 0 = none (also shellfrac --quiet)",
           params::non_negative_double());
+  pl->set("Fields", Teuchos::Array<std::string>(),
+          "Exodus fields to write, e.g. {displ, damage, fragment_id}; empty = all: the nodal vectors displ, velocity, "
+          "director and the element fields block, rank, eq_plastic_strain, membrane_force, bending_moment, "
+          "shear_force, damage, fragment_id (docs/output.md). The history columns are always written as global "
+          "variables");
   pl->set("Probes", Teuchos::Array<std::string>(), "Node sets whose mean displacement and velocity (over all DG "
                                                      "copies of their nodes) are history columns <set>_displ_x ... "
                                                      "<set>_vel_z, e.g. {tip, centre}");

@@ -28,11 +28,17 @@ struct OutputParams {
   std::string directory;  ///< "" = the current directory
   std::vector<std::string> probes;  ///< node sets whose mean displacement/velocity go to the history
   double progress_interval = 10;    ///< seconds of wall time between progress lines on rank 0 (0 = none)
+  std::vector<std::string> fields;  ///< Exodus fields to write (nodal_result_names, element_result_names; empty = all)
 
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
   /// <directory>/<base_name><suffix> (no directory part when directory is empty).
   std::string path(const std::string& suffix) const;
 };
+
+/// The Exodus result fields a run can write (Output->Fields), in file order: the nodal vectors ...
+std::vector<std::string> nodal_result_names();
+/// ... and the element scalars.
+std::vector<std::string> element_result_names();
 
 /// Validated "Checkpoint" sublist (HDF5 checkpoints and restart; io/checkpoint.hpp).
 struct CheckpointParams {

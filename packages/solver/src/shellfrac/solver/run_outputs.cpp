@@ -1,6 +1,7 @@
 #include "shellfrac/solver/run_outputs.hpp"
 
 #include <Teuchos_XMLParameterListCoreHelpers.hpp>
+#include <algorithm>
 #include <filesystem>
 #include <regex>
 #include <sstream>
@@ -79,6 +80,22 @@ void add_sets(const Deck& deck, const RunModel& model, io::ResultsLayout& layout
   for (const auto& r : deck.regions) add_nodes(r.name, ++node_id), add_sides(r.name, ++side_id);
 }
 
+/// Indices of the written fields among `candidates` (Output->Fields; empty: all), in candidate order.
+std::vector<int> written(const std::vector<std::string>& candidates, const std::vector<std::string>& fields) {
+  std::vector<int> out;
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    if (fields.empty() || std::find(fields.begin(), fields.end(), candidates[i]) != fields.end())
+      out.push_back(static_cast<int>(i));
+  return out;
+}
+
+template <class T>
+std::vector<T> pick(std::vector<T> all, const std::vector<int>& which) {
+  std::vector<T> out;
+  for (int i : which) out.push_back(std::move(all[i]));
+  return out;
+}
+
 /// The Exodus layout of the owned elements: blocks, DG nodes, the nodal vectors and element fields, and the
 /// history columns as global variables (names cut to the length Exodus readers take).
 io::ResultsLayout results_layout(const Deck& deck, const RunModel& model, const std::vector<std::string>& columns) {
@@ -87,9 +104,8 @@ io::ResultsLayout results_layout(const Deck& deck, const RunModel& model, const 
   layout.title = "shellfrac: " + deck.file;
   layout.nodes_per_element = dm.nodes_per_element();
   for (const auto& b : model.mesh->blocks) layout.block_names.push_back(b.name), layout.block_ids.push_back(b.id);
-  layout.nodal_vectors = {"displ", "velocity", "director"};
-  layout.element_scalars = {"block", "rank"};
-  for (const auto& name : ShellDynamics::element_field_names()) layout.element_scalars.push_back(name);
+  layout.nodal_vectors = pick(nodal_result_names(), written(nodal_result_names(), deck.output.fields));
+  layout.element_scalars = pick(element_result_names(), written(element_result_names(), deck.output.fields));
   layout.info = info_records(*deck.expanded, deck.file);
   for (const auto& c : columns) layout.global_variables.push_back(c.substr(0, io::max_global_name_length));
   for (LocalId le = 0; le < dm.num_owned(); ++le) {
@@ -124,7 +140,13 @@ std::string ResultPaths::restart_exodus(long step) const {
 RunOutputs::RunOutputs(const Deck& deck, RunModel& model, const std::vector<std::string>& probe_names,
                        const std::vector<std::vector<char>>& probe_members, long restart_step, double e0,
                        MPI_Comm comm)
-    : deck_(deck), model_(model), probe_names_(probe_names), probe_members_(probe_members), e0_(e0) {
+    : deck_(deck),
+      model_(model),
+      probe_names_(probe_names),
+      probe_members_(probe_members),
+      e0_(e0),
+      nodal_written_(written(nodal_result_names(), deck.output.fields)),
+      element_written_(written(element_result_names(), deck.output.fields)) {
   const ResultPaths paths(deck);
   const bool restarted = restart_step >= 0;
   exodus_path_ = restarted ? paths.restart_exodus(restart_step) : paths.exodus;
@@ -175,7 +197,8 @@ void RunOutputs::write_frame(bool fragment_rows) {
   dyn.element_fields(fields);
   std::vector<std::vector<double>> element = element_constant_;
   element.insert(element.end(), fields.begin(), fields.end());
-  exodus_->write_step(dyn.time(), nodal, element, history_values(nullptr));
+  exodus_->write_step(dyn.time(), pick(std::move(nodal), nodal_written_), pick(std::move(element), element_written_),
+                      history_values(nullptr));
 }
 
 std::vector<double> RunOutputs::history_values(StepRecord* record) {

@@ -63,6 +63,7 @@ class RunOutputs {
   std::unique_ptr<io::ExodusResultsWriter> exodus_;
   std::unique_ptr<io::HistoryWriter> history_, fragments_, cracks_;
   std::vector<std::vector<double>> element_constant_;  // block id and rank per owned element
+  std::vector<int> nodal_written_, element_written_;   // the fields Output->Fields selects (all by default)
   GlobalId cracks_logged_ = -1;  // the count of activated edges the crack log was last written at
 };
 

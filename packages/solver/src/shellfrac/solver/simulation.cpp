@@ -120,7 +120,13 @@ double estimated_result_bytes(const Deck& deck, GlobalId elements, long steps, d
       std::min(double(steps), tp.output_interval > 0 ? std::floor((tp.end_time - t) / tp.output_interval) : 0) + 2;
   const double dg_nodes = 6.0 * double(elements);
   const double fixed = dg_nodes * 3 * 8 + dg_nodes * 4;
-  const double per_frame = dg_nodes * 9 * 8 + double(elements) * (ShellDynamics::element_field_names().size() + 2) * 8;
+  const auto& fields = deck.output.fields;
+  const auto nodal = nodal_result_names();
+  const double vectors = fields.empty() ? double(nodal.size()) : double(std::count_if(fields.begin(), fields.end(), [&](const auto& f) {
+    return std::find(nodal.begin(), nodal.end(), f) != nodal.end();
+  }));
+  const double scalars = fields.empty() ? double(element_result_names().size()) : double(fields.size()) - vectors;
+  const double per_frame = dg_nodes * 3 * 8 * vectors + double(elements) * scalars * 8;
   const double columns = 30 + 6 * double(deck.output.probes.size() + deck.boundary_conditions.size());
   const double rows = double(steps) / tp.history_interval + 2;
   return fixed + frames * per_frame + rows * columns * 16;
