@@ -13,7 +13,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -68,6 +70,10 @@ void print_summary(const shellfrac::solver::Simulation& sim, const std::string& 
               << ms.max_element + 1 << " (centroid " << ms.max_centroid[0] << ", " << ms.max_centroid[1] << ", "
               << ms.max_centroid[2] << ")\n";
   }
+  std::ostringstream setup;
+  setup << std::fixed << std::setprecision(2) << "  set-up (slowest rank):";
+  for (const auto& [phase, seconds] : sim.setup_seconds()) setup << " " << phase << " " << seconds << " s";
+  std::cout << setup.str() << "\n";
   for (const auto& r : s.regions)
     std::cout << "  region '" << r.name << "': " << r.elements << " elements, " << r.nodes << " nodes, " << r.edges
               << " edges\n";

@@ -1,6 +1,7 @@
 #include "shellfrac/solver/model_setup.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <sstream>
 
 #include "shellfrac/core/error.hpp"
@@ -70,14 +71,32 @@ std::vector<std::string> model_warnings(const Deck& deck, const RunModel& r) {
 
 RunModel build_run_model(const Deck& deck, MPI_Comm comm) {
   RunModel r;
+  auto last = std::chrono::steady_clock::now();
+  std::vector<double> seconds;
+  const auto lap = [&] {
+    const auto now = std::chrono::steady_clock::now();
+    seconds.push_back(std::chrono::duration<double>(now - last).count());
+    last = now;
+  };
   r.mesh = std::make_unique<mesh::SerialMesh>(build_mesh(deck.mesh, comm));
   check_deck_against_mesh(deck, *r.mesh);
+  lap();
   r.topology = std::make_unique<mesh::EdgeTopology>(mesh::build_edge_topology(*r.mesh, deck.mesh.non_manifold));
   check_orientation(*r.mesh, *r.topology);
+  lap();
   const auto part = decomposition::partition_elements(*r.mesh, *r.topology, parallel::size(comm), *deck.partition, comm);
+  lap();
   r.distributed = std::make_unique<decomposition::DistributedMesh>(*r.mesh, *r.topology, part, comm);
+  lap();
   r.dynamics = std::make_unique<ShellDynamics>(*r.mesh, *r.distributed, deck);
   r.warnings = model_warnings(deck, r);
+  lap();
+  std::vector<double> slowest(seconds.size());
+  SHELLFRAC_REQUIRE(MPI_Allreduce(seconds.data(), slowest.data(), int(seconds.size()), MPI_DOUBLE, MPI_MAX, comm) ==
+                        MPI_SUCCESS,
+                    "MPI_Allreduce of the set-up times failed");
+  const char* phases[] = {"mesh", "topology", "partition", "distribution", "model"};
+  for (std::size_t k = 0; k < slowest.size(); ++k) r.setup_seconds.push_back({phases[k], slowest[k]});
   return r;
 }
 

@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace shellfrac::mesh {
@@ -33,6 +34,8 @@ struct RunModel {
   std::unique_ptr<decomposition::DistributedMesh> distributed;
   std::unique_ptr<ShellDynamics> dynamics;
   std::vector<std::string> warnings;  ///< model_warnings(), for the program to print (rank 0)
+  /// Wall time of each set-up phase (mesh, topology, partition, distribution, model) on the slowest rank [s].
+  std::vector<std::pair<std::string, double>> setup_seconds;
 };
 
 /// Builds the model of `deck` on `comm`. InputError (on every rank) for any problem. Collective.

@@ -60,6 +60,8 @@ class Simulation {
   const RunSummary& summary() const { return summary_; }
   /// What the model check found valid but probably not meant (model_warnings), for rank 0 to print.
   const std::vector<std::string>& warnings() const { return model_.warnings; }
+  /// Wall time of each set-up phase on the slowest rank (model_setup.hpp).
+  const std::vector<std::pair<std::string, double>>& setup_seconds() const { return model_.setup_seconds; }
   /// Path of the Exodus results (the per-rank set's base name when np > 1).
   std::string exodus_path() const;
   std::string history_path() const;
