@@ -293,7 +293,7 @@ class Reliability(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertRegex(r.stderr, r"warning: element \d+ of block 'plate' \(material 'aluminium': .*\), centroid "
                                    r"\(.*\), has the smallest stable step [0-9.e+-]+, 0\.0[0-9]+ of the median "
-                                   r"element's [0-9.e+-]+: it sets the time step of the whole mesh \(a sliver\?\)")
+                                   r"element's [0-9.e+-]+: it sets the time step of the whole mesh \(a sliver, or a locally refined region\?\)")
         r = run(["--check", self.deck()], self.dir)
         self.assertNotIn("warning", r.stderr)  # a uniform mesh: no word
 
