@@ -51,7 +51,10 @@ void remove_stale_results(const std::string& path) {
 }
 
 /// The mesh's node and side sets, then the deck's regions (ids after the mesh's), on the owned elements' DG
-/// copies: a node set holds every DG copy of its mesh nodes, a side set the owned element edges.
+/// copies: a node set holds every DG copy of its mesh nodes, a side set the owned element edges. A side set
+/// named like a node set (every region, and x_min ... of the generators) is written as <name>_edges
+/// (sideset_<id> if that is too long for Exodus): ParaView 5.11's IOSS reader fails on a file whose node and
+/// side sets share names once both are shown with displacements.
 void add_sets(const Deck& deck, const RunModel& model, io::ResultsLayout& layout) {
   const auto& dm = *model.distributed;
   const auto& mesh = *model.mesh;
@@ -68,7 +71,11 @@ void add_sets(const Deck& deck, const RunModel& model, io::ResultsLayout& layout
   };
   const auto add_sides = [&](const std::string& name, int id) {
     const auto sides = sets.side_set(what, name);
-    io::ResultsSet set{name, id, {}, {}};
+    const bool shared = std::any_of(layout.node_sets.begin(), layout.node_sets.end(),
+                                    [&](const io::ResultsSet& n) { return n.name == name; });
+    std::string file_name = shared ? name + "_edges" : name;
+    if (file_name.size() > io::max_exodus_name_length) file_name = "sideset_" + std::to_string(id);
+    io::ResultsSet set{file_name, id, {}, {}};
     for (LocalId le = 0; le < dm.num_owned(); ++le)
       for (int k = 0; k < 3; ++k)
         if (sides.count({dm.element_gid(le), k})) set.entries.push_back(dm.element_gid(le)), set.edges.push_back(k);
@@ -76,8 +83,9 @@ void add_sets(const Deck& deck, const RunModel& model, io::ResultsLayout& layout
   };
   int node_id = 0, side_id = 0;
   for (const auto& s : mesh.node_sets) add_nodes(s.name, s.id), node_id = std::max(node_id, s.id);
+  for (const auto& r : deck.regions) add_nodes(r.name, ++node_id);
   for (const auto& s : mesh.side_sets) add_sides(s.name, s.id), side_id = std::max(side_id, s.id);
-  for (const auto& r : deck.regions) add_nodes(r.name, ++node_id), add_sides(r.name, ++side_id);
+  for (const auto& r : deck.regions) add_sides(r.name, ++side_id);
 }
 
 /// Indices of the written fields among `candidates` (Output->Fields; empty: all), in candidate order.
