@@ -15,14 +15,15 @@ import tempfile
 import time
 import unittest
 
+from cli_common import ENV, Launcher
+
 SRC, SHELLFRAC, MESHTOOL, MPIEXEC = sys.argv[1:5]
 MPI_PREFLAGS = sys.argv[5:]
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+launch = Launcher(MPIEXEC, MPI_PREFLAGS)
 
 
 def run(args, cwd=None, np=None):
-    cmd = ([MPIEXEC, "-np", str(np)] + MPI_PREFLAGS if np else []) + args
-    return subprocess.run(cmd, cwd=cwd, env=ENV, capture_output=True, text=True, timeout=120)
+    return launch(args, cwd, np)
 
 
 class Shellfrac(unittest.TestCase):

@@ -6,14 +6,15 @@ usage: test_hostile_deck.py SOURCE_DIR SHELLFRAC MPIEXEC [MPIEXEC_PREFLAGS...]
 """
 import os
 import shutil
-import subprocess
 import sys
 import tempfile
 import unittest
 
+from cli_common import Launcher
+
 SRC, SHELLFRAC, MPIEXEC = sys.argv[1:4]
 MPI_PREFLAGS = sys.argv[4:]
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+launch = Launcher(MPIEXEC, MPI_PREFLAGS)
 
 # A 4 x 2 strip (16 TRI6), clamped at x_min, kicked along z.
 BASE = """<ParameterList name="shellfrac">
@@ -86,8 +87,7 @@ $EndElements
 
 
 def run(args, cwd=None, np=None):
-    cmd = ([MPIEXEC, "-np", str(np)] + MPI_PREFLAGS if np else []) + args
-    return subprocess.run(cmd, cwd=cwd, env=ENV, capture_output=True, text=True, timeout=120)
+    return launch(args, cwd, np)
 
 
 class HostileDeck(unittest.TestCase):

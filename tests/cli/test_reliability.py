@@ -20,9 +20,11 @@ import tempfile
 import time
 import unittest
 
+from cli_common import ENV, Launcher
+
 SRC, SHELLFRAC, MPIEXEC = sys.argv[1:4]
 MPI_PREFLAGS = sys.argv[4:]
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+launch = Launcher(MPIEXEC, MPI_PREFLAGS)
 
 BASE = """<ParameterList name="shellfrac">
   <ParameterList name="Mesh">
@@ -77,8 +79,7 @@ BASE = """<ParameterList name="shellfrac">
 
 
 def run(args, cwd, np=None, timeout=120):
-    cmd = ([MPIEXEC, "-np", str(np)] + MPI_PREFLAGS if np else []) + [SHELLFRAC, "--quiet"] + args
-    return subprocess.run(cmd, cwd=cwd, env=ENV, capture_output=True, text=True, timeout=timeout)
+    return launch([SHELLFRAC, "--quiet"] + args, cwd, np, timeout)
 
 
 def md5(path):
