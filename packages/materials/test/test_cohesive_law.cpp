@@ -38,6 +38,7 @@ using shellfrac::materials::CohesiveResult;
 using shellfrac::materials::effective_opening;
 using shellfrac::materials::equivalent_traction;
 using shellfrac::materials::make_cohesive_params;
+using shellfrac::materials::starting_energy_released;
 
 namespace {
 
@@ -464,6 +465,61 @@ TEST(CohesiveLaw, DissipationAndWorkIdentity) {
     // the uncorrected first increment misses 1/2 S0 delta_1 = (delta_1/delta_f) Gamma h, delta_1 = 0.3 df/n
     EXPECT_NEAR(first, 0.3 / n, 1e-9);
   }
+}
+
+// (Test 5b) The law that starts at the activation opening delta0 = 0.05 delta_f (theory.md §9.2, §9.6-9.7): from
+// a starting state Q0 on the loading surface (delta(Q0) = delta0 = delta_max, traction S0), along load - unload -
+// reload in another direction - load to complete separation, mixed mode, weighted Table 2 law.
+// References (derived in theory.md §9.7): S(delta0) = S0 and S(delta0 + delta_f) = 0 exactly; the trapezoidal work
+// from Q0 = Delta(phi + D) at every point with the second-order quadrature error of test 5 (2/n^2 Gamma h, no
+// first-increment defect: the law starts carrying its traction); at separation D = Gamma h + S0 delta0 / 2 and
+// the released starting energy is S0 delta0 / 2, so D less it is Gamma h, to 1e-12 relative; the total work from
+// Q0 is Gamma h (the area under S from delta0 to delta0 + delta_f), whatever delta0.
+TEST(CohesiveLaw, LawStartingAtTheActivationOpening) {
+  Rng rng(7);
+  const CohesiveParams rigid = weighted();
+  const CohesiveParams p = make_cohesive_params(rigid.h, rigid.sigma_c, rigid.Gamma, rigid.alpha1, rigid.alpha2,
+                                                rigid.alpha3, 0.05);
+  const double df = p.delta_f, d0 = p.delta0, Gh = p.Gamma * p.h;
+  EXPECT_NEAR(d0, 0.05 * df, 1e-15 * df);
+  EXPECT_EQ(cohesive_strength(p, 0.0), p.S0);
+  EXPECT_EQ(cohesive_strength(p, d0), p.S0);
+  EXPECT_NEAR(cohesive_strength(p, d0 + 0.5 * df), 0.5 * p.S0, 1e-13 * p.S0);
+  EXPECT_EQ(cohesive_strength(p, d0 + df), 0.0);
+  const Frame fr = random_frame(rng);
+  auto point = [&](double delta) {
+    double a[3], b[3];
+    random_jumps(rng, p, fr.nu, delta, a, b);
+    return std::vector<double>{a[0], a[1], a[2], b[0], b[1], b[2]};
+  };
+  const std::vector<double> Q0 = point(d0), A = point(d0 + 0.3 * df), B = point(0.5 * d0);
+  std::vector<double> E(6);
+  for (int i = 0; i < 6; ++i) E[i] = A[i] * (1.2 * (d0 + df) / (d0 + 0.3 * df));  // beyond separation
+  const std::vector<std::vector<double>> wp = {Q0, A, B, E};
+  const int n = 2000;
+  double dmax = d0, W = 0, worst = 0, F[6], q[6];
+  CohesiveResult start = cohesive_tractions(p, Q0.data(), Q0.data() + 3, fr.nu, dmax, F, F + 3), r = start;
+  EXPECT_NEAR(start.stored, 0.5 * p.S0 * d0, 1e-12 * Gh);
+  EXPECT_EQ(start.dissipated, 0.0);
+  double q_prev[6], F_prev[6];
+  for (int i = 0; i < 6; ++i) q_prev[i] = Q0[i], F_prev[i] = F[i];
+  for (std::size_t s = 1; s < wp.size(); ++s)
+    for (int j = 1; j <= n; ++j) {
+      const double a = double(j) / n;
+      for (int i = 0; i < 6; ++i) q[i] = (1 - a) * wp[s - 1][i] + a * wp[s][i];
+      r = cohesive_tractions(p, q, q + 3, fr.nu, dmax, F, F + 3);
+      for (int i = 0; i < 6; ++i) W += 0.5 * (F_prev[i] + F[i]) * (q[i] - q_prev[i]), q_prev[i] = q[i], F_prev[i] = F[i];
+      worst = std::max(worst, std::fabs(W - (r.stored + r.dissipated - start.stored)) / Gh);
+    }
+  std::printf("[delta0] max |W - Delta(phi + D)|/(Gamma h) = %.3g (n = %d)\n", worst, n);
+  EXPECT_LE(worst, 2.0 / (double(n) * n));
+  EXPECT_TRUE(r.separated);
+  EXPECT_EQ(r.stored, 0.0);
+  EXPECT_NEAR(r.dissipated, Gh + 0.5 * p.S0 * d0, 1e-12 * Gh);
+  EXPECT_NEAR(starting_energy_released(p, dmax), 0.5 * p.S0 * d0, 1e-12 * Gh);
+  EXPECT_NEAR(r.dissipated - starting_energy_released(p, dmax), Gh, 1e-12 * Gh);
+  EXPECT_NEAR(W, Gh, 2.0 / (double(n) * n) * Gh);
+  EXPECT_EQ(starting_energy_released(rigid, 2 * df), 0.0);
 }
 
 // (Test 6) Consistency of the nucleation measure (eqs. 29-31) with the traction law (eqs. 22-23), random mixed

@@ -14,7 +14,7 @@ namespace shellfrac::io {
 
 namespace {
 
-constexpr const char* format_tag = "shellfrac checkpoint 2";
+constexpr const char* format_tag = "shellfrac checkpoint 3";
 
 /// Rows per HDF5 chunk of a table (chunked storage carries the Fletcher32 checksum of every chunk).
 constexpr hsize_t rows_per_chunk = 4096;

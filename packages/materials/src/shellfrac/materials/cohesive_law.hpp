@@ -51,15 +51,17 @@ struct CohesiveParams {
   double alpha3;   ///< weight of the tangential director jump h |theta_S| (twist) in eq. 20 (> 0)
   double S0;       ///< initial strength h sigma_c
   double k;        ///< softening rate h sigma_c^2 / (2 Gamma); +infinity if Gamma = 0
-  double delta_f;  ///< separation opening 2 Gamma / sigma_c; 0 if Gamma = 0
+  double delta_f;  ///< softening length 2 Gamma / sigma_c; 0 if Gamma = 0
+  double delta0;   ///< opening at which softening starts (theory.md §9.6: the activation opening); 0 = rigid law
 };
 
-/// Host helper: cohesive parameters from the thickness h, the strength sigma_c, the work of separation Gamma
-/// and the eq. 20 weights alpha1..3 (paper §3.1: S0 = h sigma_c, k = h sigma_c^2/(2 Gamma), delta_f =
-/// 2 Gamma/sigma_c; Gamma = 0 stores k = +inf, delta_f = 0, see CohesiveParams). No validation here
-/// (preconditions h > 0, sigma_c > 0, Gamma >= 0, alpha_i > 0; parameter parsing validates).
+/// Host helper: cohesive parameters from the thickness h, the strength sigma_c, the work of separation Gamma,
+/// the eq. 20 weights alpha1..3 and the activation opening as a fraction of delta_f (paper §3.1: S0 = h sigma_c,
+/// k = h sigma_c^2/(2 Gamma), delta_f = 2 Gamma/sigma_c; Gamma = 0 stores k = +inf, delta_f = 0, see
+/// CohesiveParams). No validation here (preconditions h > 0, sigma_c > 0, Gamma >= 0, alpha_i > 0,
+/// delta0_ratio >= 0; parameter parsing validates).
 inline CohesiveParams make_cohesive_params(double h, double sigma_c, double Gamma, double alpha1 = 1,
-                                           double alpha2 = 1, double alpha3 = 1) {
+                                           double alpha2 = 1, double alpha3 = 1, double delta0_ratio = 0) {
   CohesiveParams p{};
   p.h = h;
   p.sigma_c = sigma_c;
@@ -75,6 +77,7 @@ inline CohesiveParams make_cohesive_params(double h, double sigma_c, double Gamm
     p.k = std::numeric_limits<double>::infinity();
     p.delta_f = 0.0;
   }
+  p.delta0 = delta0_ratio * p.delta_f;
   return p;
 }
 
@@ -106,14 +109,16 @@ KOKKOS_INLINE_FUNCTION double opening_squared(const CohesiveParams& p, const dou
 
 }  // namespace detail
 
-/// Strength S(delta_max) = max(S0 - k delta_max, 0) (paper eq. 24-25 with the linear strength of §3.1, theory.md
-/// §9.2). Returns 0 whenever delta_max >= delta_f, without evaluating k delta_max, so that Gamma = 0
-/// (k = +inf, delta_f = 0) gives S = 0 for all delta_max >= 0 (no inf * 0). For Gamma > 0: S(0) = S0,
-/// S(delta_f) = 0, linear in between; the clamp at 0 also absorbs the last-ulp round-off of S0 - k delta_max
-/// just below delta_f.
+/// Strength S(delta_max) = max(S0 - k (delta_max - delta0), 0) for delta_max >= delta0 (paper eqs. 24-25 with
+/// the linear strength of §3.1, theory.md §9.2; delta0 = 0 is the paper's rigid law, delta0 > 0 the law that
+/// starts at the activation opening, §9.6), S0 below delta0. Returns 0 whenever delta_max >= delta0 + delta_f,
+/// without evaluating k, so that Gamma = 0 (k = +inf, delta_f = delta0 = 0) gives S = 0 for all delta_max >= 0
+/// (no inf * 0). For Gamma > 0: S(delta0) = S0, S(delta0 + delta_f) = 0, linear in between; the clamp at 0 also
+/// absorbs the last-ulp round-off just below delta0 + delta_f.
 KOKKOS_INLINE_FUNCTION double cohesive_strength(const CohesiveParams& p, double delta_max) {
-  if (!(delta_max < p.delta_f)) return 0.0;
-  const double S = p.S0 - p.k * delta_max;
+  if (!(delta_max < p.delta0 + p.delta_f)) return 0.0;
+  if (delta_max <= p.delta0) return p.S0;
+  const double S = p.S0 - p.k * (delta_max - p.delta0);
   return S > 0.0 ? S : 0.0;
 }
 
@@ -130,8 +135,8 @@ KOKKOS_INLINE_FUNCTION double effective_opening(const CohesiveParams& p, const d
 /// Result of one cohesive evaluation at an edge point (theory.md §9.7), per unit reference length.
 struct CohesiveResult {
   double stored;      ///< phi = 1/2 S(delta_max) delta^2/delta_max (eq. 24); 0 if delta_max = 0 or S = 0
-  double dissipated;  ///< D = 1/2 S0 min(delta_max, delta_f) (eq. 26 integrated), total so far; Gamma h once
-                      ///< separated, 0 for Gamma = 0
+  double dissipated;  ///< D = 1/2 S0 (min(delta_max, delta0 + delta_f) - delta0)^+ (eq. 26 integrated), total
+                      ///< so far; Gamma h once separated, 0 for Gamma = 0
   bool separated;     ///< S(delta_max) = 0, i.e. delta_max >= delta_f (always true for Gamma = 0): the point
                       ///< carries no traction any more (theory.md §9.3: the point is separated)
 };
@@ -158,9 +163,9 @@ KOKKOS_INLINE_FUNCTION CohesiveResult cohesive_tractions(const CohesiveParams& p
   const double S = cohesive_strength(p, delta_max);
   CohesiveResult r{0.0, 0.0, !(S > 0.0)};
   if (r.separated) {
-    r.dissipated = 0.5 * p.S0 * p.delta_f;  // = Gamma h (0 for Gamma = 0)
-  } else {
-    r.dissipated = 0.5 * p.S0 * delta_max;  // delta_max < delta_f here
+    r.dissipated = 0.5 * p.S0 * (p.delta_f + p.delta0);  // = Gamma h + S0 delta0 / 2 (0 for Gamma = 0)
+  } else if (delta_max > p.delta0) {
+    r.dissipated = 0.5 * (p.S0 + p.k * p.delta0) * (delta_max - p.delta0);  // delta_max < delta0 + delta_f here
   }
   if (delta_max > 0.0 && S > 0.0) {
     const double s = S / delta_max;  // secant (eq. 25): n = s delta <= S
@@ -177,6 +182,16 @@ KOKKOS_INLINE_FUNCTION CohesiveResult cohesive_tractions(const CohesiveParams& p
     }
   }
   return r;
+}
+
+/// The part of the dissipation D (cohesive_tractions) that releases the energy of the law's starting state
+/// (theory.md §9.7): 1/2 k delta0 (min(delta_max, delta0 + delta_f) - delta0)^+, which reaches 1/2 S0 delta0 at
+/// separation; D less it is 1/2 S0 (min(delta_max, delta0 + delta_f) - delta0)^+, the work of separation (Gamma h
+/// once separated). 0 for delta0 = 0 (also Gamma = 0).
+KOKKOS_INLINE_FUNCTION double starting_energy_released(const CohesiveParams& p, double delta_max) {
+  if (!(p.delta0 > 0.0) || !(delta_max > p.delta0)) return 0.0;
+  const double end = p.delta0 + p.delta_f;
+  return 0.5 * p.k * p.delta0 * ((delta_max < end ? delta_max : end) - p.delta0);
 }
 
 /// Equivalent traction of the nucleation criterion (paper eqs. 29-31, theory.md §9.5 step 2) from the average

@@ -26,15 +26,18 @@ KOKKOS_INLINE_FUNCTION void edge_shape_p2_derivative(double s, double dn[3]) {
   dn[2] = 4 - 8 * s;
 }
 
-/// Current unit co-normal nu (outward of E+) at edge point g of an interface (theory.md §9.1). Returns false
-/// if the faces are degenerate (|dbar x tau| < 1e-8); nu is then left unchanged (the caller keeps its last one).
+/// Current unit co-normal nu (outward of E+) at edge point g of an interface (theory.md §9.1), and the normalized
+/// mean director dbar it is built from. Returns false if the faces are degenerate (|dbar x tau| < 1e-8); nu is
+/// then left unchanged (the caller keeps its last one).
 KOKKOS_INLINE_FUNCTION bool interface_conormal(const disc::DgInterfaceRef& I, int g, const double xm[3][3],
-                                               const double tm[2][3], const double tp[2][3], double nu[3]) {
+                                               const double tm[2][3], const double tp[2][3], double nu[3],
+                                               double dbar[3]) {
   const double s = disc::edge3_rule.s[g];
   const disc::EdgePointShapes sh = disc::edge_point_shapes(s, I.s_plus[g]);
-  double dn[3], tau[3] = {0, 0, 0}, dbar[3] = {0, 0, 0}, n[3];
+  double dn[3], tau[3] = {0, 0, 0}, n[3];
   edge_shape_p2_derivative(s, dn);
   for (int c = 0; c < 3; ++c) {
+    dbar[c] = 0;
     for (int j = 0; j < 3; ++j) tau[c] += dn[j] * xm[j][c];
     for (int j = 0; j < 2; ++j) dbar[c] += sh.p1[j] * tm[j][c] + sh.p1_other[j] * tp[j][c];
   }
@@ -47,6 +50,66 @@ KOKKOS_INLINE_FUNCTION bool interface_conormal(const disc::DgInterfaceRef& I, in
   return true;
 }
 
+/// The jumps [[phi]] = phi^-(g) - phi^+(g) and [[t]] = t^-(g) - t^+(g) at edge point g (theory.md §9.1).
+KOKKOS_INLINE_FUNCTION void interface_jumps(const disc::DgInterfaceRef& I, int g, const double xm[3][3],
+                                            const double tm[2][3], const double xp[3][3], const double tp[2][3],
+                                            double jx[3], double jt[3]) {
+  const disc::EdgePointShapes sh = disc::edge_point_shapes(disc::edge3_rule.s[g], I.s_plus[g]);
+  for (int c = 0; c < 3; ++c) {
+    jx[c] = 0, jt[c] = 0;
+    for (int j = 0; j < 3; ++j) jx[c] += sh.p2[j] * xm[j][c] - sh.p2_other[j] * xp[j][c];
+    for (int j = 0; j < 2; ++j) jt[c] += sh.p1[j] * tm[j][c] - sh.p1_other[j] * tp[j][c];
+  }
+}
+
+/// The orthonormal interface frame at an edge point (theory.md §9.6): e[0] = nu, e[1] = the mean director dbar
+/// made orthogonal to nu (it already is unless nu was kept from a degenerate configuration), e[2] = e[0] x e[1]
+/// (the edge tangent). It turns with the interface, so components in it are objective.
+KOKKOS_INLINE_FUNCTION void interface_frame(const double nu[3], const double dbar[3], double e[3][3]) {
+  const double dn = disc::dot3(dbar, nu);
+  for (int c = 0; c < 3; ++c) e[0][c] = nu[c], e[1][c] = dbar[c] - dn * nu[c];
+  disc::normalize3(e[1]);
+  disc::cross3(e[0], e[1], e[2]);
+}
+
+/// The state of the cohesive law of an interface that activates now (theory.md §9.6), from the average edge force
+/// and couple n, m of the nucleation check and its co-normals nu. At each edge point the law starts from the
+/// opening Q0 whose tractions are (n, m) scaled to the strength S0 (time-continuous activation): with the
+/// initial secant s0 = S0/delta0,
+///   [[phi]]0 = ((n.nu) nu + n_S/alpha1^2)/s0 ,   [[t]]0 = ((m.nu) nu/alpha2^2 + m_S/alpha3^2)/(h^2 s0) ,
+/// whose effective opening is delta(Q0) = n_eq delta0/S0. The opening of the law is measured from the jumps
+/// now (the DG jumps that the penalty and the lifting held) plus Q0: offset[g] = components in the interface
+/// frame of (current jumps - Q0); delta_max[g] = max(delta0, delta(Q0)). With delta0 = 0 (Gamma = 0, or the
+/// rigid law) Q0 = 0 and delta_max = 0.
+KOKKOS_INLINE_FUNCTION void activation_state(const disc::DgInterfaceRef& I, const materials::CohesiveParams& p,
+                                             const double xm[3][3], const double tm[2][3], const double xp[3][3],
+                                             const double tp[2][3], const double n[disc::num_edge_points][3],
+                                             const double m[disc::num_edge_points][3],
+                                             const double nu[disc::num_edge_points][3],
+                                             double offset[disc::num_edge_points][6],
+                                             double delta_max[disc::num_edge_points]) {
+  for (int g = 0; g < disc::num_edge_points; ++g) {
+    double nu_g[3], dbar[3], e[3][3], jx[3], jt[3];
+    disc::copy3(nu[g], nu_g);
+    interface_conormal(I, g, xm, tm, tp, nu_g, dbar);
+    interface_frame(nu[g], dbar, e);
+    interface_jumps(I, g, xm, tm, xp, tp, jx, jt);
+    delta_max[g] = 0;
+    if (p.delta0 > 0) {
+      const double inv_s0 = p.delta0 / p.S0;
+      const double nN = disc::dot3(n[g], nu[g]), mN = disc::dot3(m[g], nu[g]);
+      const double a1 = p.alpha1 * p.alpha1, a2 = p.alpha2 * p.alpha2 * p.h * p.h, a3 = p.alpha3 * p.alpha3 * p.h * p.h;
+      for (int c = 0; c < 3; ++c) {
+        jx[c] -= inv_s0 * (nN * nu[g][c] + (n[g][c] - nN * nu[g][c]) / a1);
+        jt[c] -= inv_s0 * (mN * nu[g][c] / a2 + (m[g][c] - mN * nu[g][c]) / a3);
+      }
+      const double d0 = materials::equivalent_traction(p, n[g], m[g], nu[g]) * inv_s0;
+      delta_max[g] = d0 > p.delta0 ? d0 : p.delta0;
+    }
+    for (int k = 0; k < 3; ++k) offset[g][k] = disc::dot3(jx, e[k]), offset[g][3 + k] = disc::dot3(jt, e[k]);
+  }
+}
+
 /// Energies and state of a cohesive interface after one evaluation.
 struct CohesiveInterfaceResult {
   double stored = 0;      ///< sum_g omega_g phi_g (theory.md §9.7)
@@ -54,27 +117,28 @@ struct CohesiveInterfaceResult {
   bool separated = true;  ///< every edge point is fully separated (the interface carries nothing any more)
 };
 
-/// Cohesive forces of an activated interface (theory.md §9.4; paper eqs. 55-56): at each edge point the jumps,
-/// the current co-normal (nu[g] keeps the last good one), the tractions n_c, m_c of the cohesive law with
-/// delta_max[g] updated in place, and the nodal forces
+/// Cohesive forces of an activated interface (theory.md §9.4, §9.6; paper eqs. 55-56): at each edge point the
+/// jumps less the offset fixed at activation (components in the interface frame, activation_state), the current
+/// co-normal (nu[g] keeps the last good one), the tractions n_c, m_c of the cohesive law with delta_max[g]
+/// updated in place, and the nodal forces
 ///   f^A(-) += omega_g n_c N^A_-,  f^A(+) -= omega_g n_c N^A_+,  g^a(-) += omega_g m_c L^a_-,  g^a(+) -= ...
-/// (internal forces: they resist the jump). Outputs are overwritten.
+/// (internal forces: they resist the opening). Outputs are overwritten.
 KOKKOS_INLINE_FUNCTION CohesiveInterfaceResult cohesive_interface_forces(
     const disc::DgInterfaceRef& I, const materials::CohesiveParams& p, const double xm[3][3], const double tm[2][3],
-    const double xp[3][3], const double tp[2][3], double delta_max[disc::num_edge_points],
-    double nu[disc::num_edge_points][3], double fm[3][3], double gm[2][3], double fp[3][3], double gp[2][3]) {
+    const double xp[3][3], const double tp[2][3], const double offset[disc::num_edge_points][6],
+    double delta_max[disc::num_edge_points], double nu[disc::num_edge_points][3], double fm[3][3], double gm[2][3],
+    double fp[3][3], double gp[2][3]) {
   for (int j = 0; j < 3; ++j) fm[j][0] = fm[j][1] = fm[j][2] = fp[j][0] = fp[j][1] = fp[j][2] = 0;
   for (int j = 0; j < 2; ++j) gm[j][0] = gm[j][1] = gm[j][2] = gp[j][0] = gp[j][1] = gp[j][2] = 0;
   CohesiveInterfaceResult r;
   for (int g = 0; g < disc::num_edge_points; ++g) {
     const disc::EdgePointShapes sh = disc::edge_point_shapes(disc::edge3_rule.s[g], I.s_plus[g]);
-    double jx[3], jt[3], nc[3], mc[3];
-    for (int c = 0; c < 3; ++c) {
-      jx[c] = 0, jt[c] = 0;
-      for (int j = 0; j < 3; ++j) jx[c] += sh.p2[j] * xm[j][c] - sh.p2_other[j] * xp[j][c];
-      for (int j = 0; j < 2; ++j) jt[c] += sh.p1[j] * tm[j][c] - sh.p1_other[j] * tp[j][c];
-    }
-    interface_conormal(I, g, xm, tm, tp, nu[g]);
+    double jx[3], jt[3], dbar[3], e[3][3], nc[3], mc[3];
+    interface_conormal(I, g, xm, tm, tp, nu[g], dbar);
+    interface_frame(nu[g], dbar, e);
+    interface_jumps(I, g, xm, tm, xp, tp, jx, jt);
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) jx[c] -= offset[g][k] * e[k][c], jt[c] -= offset[g][3 + k] * e[k][c];
     const materials::CohesiveResult cr = materials::cohesive_tractions(p, jx, jt, nu[g], delta_max[g], nc, mc);
     r.stored += I.omega[g] * cr.stored;
     r.dissipated += I.omega[g] * cr.dissipated;
@@ -125,7 +189,8 @@ KOKKOS_INLINE_FUNCTION double interface_nucleation(const disc::DgInterfaceRef& I
                                                    double nu[disc::num_edge_points][3]) {
   double fbar = 0;
   for (int g = 0; g < disc::num_edge_points; ++g) {
-    interface_conormal(I, g, xm, tm, tp, nu[g]);
+    double dbar[3];
+    interface_conormal(I, g, xm, tm, tp, nu[g], dbar);
     fbar += I.omega[g] * (materials::equivalent_traction(p, n[g], m[g], nu[g]) / p.S0 - 1.0);
   }
   return fbar * I.inv_he;

@@ -106,6 +106,12 @@ Teuchos::RCP<const Teuchos::ParameterList> FractureParams::valid_parameters() {
           params::positive_double());
   pl->set("Alpha 3", 1.0, "alpha3: weight of the tangential director jump h |theta_S| (paper eq. 20)",
           params::positive_double());
+  pl->set("Activation Opening", 0.05,
+          "delta0 / delta_f: the effective opening at which an activated edge's cohesive law starts, as a fraction of "
+          "its softening length 2 Gamma / sigma_c; the law starts there carrying the edge's traction (continuous in "
+          "time), so its initial secant S0/delta0 is resolved by the time step (theory.md §9.6). 0 = the rigid law "
+          "of the paper, whose balance error grows with the opening rate",
+          params::double_range(0.0, 1.0));
   return pl;
 }
 
@@ -116,6 +122,7 @@ FractureParams FractureParams::from_parameters(Teuchos::ParameterList& pl, const
   f.alpha1 = pl.get<double>("Alpha 1");
   f.alpha2 = pl.get<double>("Alpha 2");
   f.alpha3 = pl.get<double>("Alpha 3");
+  f.activation_opening = pl.get<double>("Activation Opening");
   return f;
 }
 

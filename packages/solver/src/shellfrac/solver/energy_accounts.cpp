@@ -5,6 +5,7 @@
 #include "shellfrac/core/exact_sum.hpp"
 #include "shellfrac/disc/director.hpp"
 #include "shellfrac/disc/small_tensor.hpp"
+#include "shellfrac/materials/cohesive_law.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/solver/constraints.hpp"
 #include "shellfrac/solver/fracture.hpp"
@@ -57,7 +58,15 @@ StepRecord step_record(const ShellState& s, const ShellModel& model, const Fract
     for (LocalId le = 0; le < no; ++le) sum[activation].add(*s.element_activation_loss.at(le));
     for (std::size_t i = 0; i < ifs.size(); ++i) {
       if (!ifs[i].owned) continue;
+      // The law's dissipation is reported as the work of separation plus, in activation_loss, the release of
+      // the energy of its starting state (docs/theory.md §9.7).
+      double released = 0;
+      if (s.mode[i] != intact)
+        for (int g = 0; g < 3; ++g)
+          released += model.interface_refs[i].omega[g] *
+                      materials::starting_energy_released(fracture.cohesive_params()[i], s.delta_max.at(i)[g]);
       sum[cohesive_stored].add(*s.cohesive_energy.at(i)), sum[cohesive_lost].add(*s.cohesive_dissipation.at(i));
+      sum[cohesive_lost].add(-released), sum[activation].add(released);
       sum[activation].add(*s.interface_activation_loss.at(i));
       if (s.mode[i] != intact) sum[cohesive_edges].add(1.0);
       if (s.mode[i] == separated) sum[separated_edges].add(1.0);

@@ -29,8 +29,8 @@ struct StepRecord {
   double damping = 0;         ///< energy dissipated by mass damping
   double plastic_work = 0;    ///< plastic work (dissipation + stored hardening energy), docs/theory.md §4.2
   double cohesive_energy = 0;       ///< energy stored in the cohesive laws of activated edges (§9.7)
-  double cohesive_dissipation = 0;  ///< energy dissipated by them (Gamma h h_e per fully separated edge)
-  double activation_loss = 0;       ///< DG energy (penalty + lifting) released when edges were activated (§9.6)
+  double cohesive_dissipation = 0;  ///< work of separation done on them (Gamma h h_e per fully separated edge)
+  double activation_loss = 0;       ///< change of the discrete energy at activations, less what softening released (§9.6-9.7)
   GlobalId cohesive_edges = 0;      ///< activated (cohesive or separated) edges
   GlobalId separated_edges = 0;     ///< fully separated edges
   GlobalId fragments = 1;           ///< connected pieces through edges that are not fully separated

@@ -161,6 +161,7 @@ void ForceAssembly::interface_kernel(ShellState& s, const std::vector<materials:
   int* mode = s.mode.data();
   const auto* cpp = cohesive.data();
   double *dmp = s.delta_max.data(), *cnp = s.conormal.data();
+  const double* jap = s.activation_offset.data();
   double *ucp = s.cohesive_energy.data(), *dcp = s.cohesive_dissipation.data();
   Kokkos::parallel_for(
       "shellfrac::InterfaceForces", Kokkos::RangePolicy<exec>(0, static_cast<int>(ifs.size())), [=](const int i) {
@@ -175,7 +176,9 @@ void ForceAssembly::interface_kernel(ShellState& s, const std::vector<materials:
           // evaluates it (zero tractions) so that its energies stay current.
           eip[i] = 0;
           double(*nu)[3] = reinterpret_cast<double(*)[3]>(cnp + i * 9);  // the 3 edge points' co-normals
-          const auto r = cohesive_interface_forces(irp[i], cpp[i], xm, tm, xq, tq, dmp + i * 3, nu, fm, gm, fq, gq);
+          const auto* offset = reinterpret_cast<const double(*)[6]>(jap + i * 18);  // their offsets fixed at activation
+          const auto r =
+              cohesive_interface_forces(irp[i], cpp[i], xm, tm, xq, tq, offset, dmp + i * 3, nu, fm, gm, fq, gq);
           ucp[i] = r.stored, dcp[i] = r.dissipated;
           if (r.separated) mode[i] = separated;
         }

@@ -47,7 +47,8 @@ Fracture::Fracture(const FractureParams& fr, const MeshSets& sets, const ShellMo
     breakable_[i] = 1, any = true;
     cohesive_[i] = materials::make_cohesive_params(
         0.5 * (a.thickness + b.thickness), 0.5 * (ma.cohesive_strength + mb.cohesive_strength),
-        0.5 * (ma.fracture_energy + mb.fracture_energy), fr.alpha1, fr.alpha2, fr.alpha3);
+        0.5 * (ma.fracture_energy + mb.fracture_energy), fr.alpha1, fr.alpha2, fr.alpha3,
+        fr.activation_opening);
   }
   enabled_ = parallel::any(any, dm_.comm());
   label_.resize(dm_.num_overlap());
@@ -75,11 +76,17 @@ void Fracture::nucleate(long step, double t1, ShellState& s, ShellModel& model, 
     if (fbar < 0) continue;
     if (fc.owned) log_activation(i, step, t1, fbar, xm, n, m, nu);
     s.mode[i] = cohesive_[i].Gamma > 0 ? cohesive : separated;
-    for (int g = 0; g < 3; ++g) {
-      s.delta_max.at(i)[g] = 0;
-      disc::copy3(nu[g], s.conormal.at(i, g));
-    }
-    *s.interface_activation_loss.at(i) += *s.penalty_energy.at(i);
+    for (int g = 0; g < 3; ++g) disc::copy3(nu[g], s.conormal.at(i, g));
+    auto* offset = reinterpret_cast<double(*)[6]>(s.activation_offset.at(i));
+    activation_state(model.interface_refs[i], cohesive_[i], xm, tm, xq, tq, n, m, nu, offset, s.delta_max.at(i));
+    // The law's energy in the same configuration (frozen: its forces are not used here), booked with the
+    // penalty energy as the change of the discrete energy at activation.
+    double fm[3][3], gm[2][3], fq[3][3], gq[2][3], nu_now[3][3], dmax[3];
+    std::copy(nu[0], nu[0] + 9, nu_now[0]), std::copy(s.delta_max.at(i), s.delta_max.at(i) + 3, dmax);
+    const CohesiveInterfaceResult law =
+        cohesive_interface_forces(model.interface_refs[i], cohesive_[i], xm, tm, xq, tq, offset, dmax, nu_now, fm, gm, fq, gq);
+    *s.cohesive_energy.at(i) = law.stored, *s.cohesive_dissipation.at(i) = law.dissipated;
+    *s.interface_activation_loss.at(i) += *s.penalty_energy.at(i) - law.stored - law.dissipated;
     *s.penalty_energy.at(i) = 0;
     for (const auto& [le, k] : {std::pair{fc.minus, fc.minus_edge}, std::pair{fc.plus, fc.plus_edge}})
       if (le < model.owned) model.lifted[le][k] = false, changed.push_back(le);

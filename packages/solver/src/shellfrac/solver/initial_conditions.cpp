@@ -28,7 +28,7 @@ void size_state(const ShellModel& model, ShellState& s) {
                      &s.element_activation_loss})
     rows->assign(no);
   s.plastic.assign(model.any_plastic ? no * disc::num_area_points : 0, materials::PlasticState{});
-  s.mode.assign(ni, intact), s.delta_max.assign(ni), s.conormal.assign(ni);
+  s.mode.assign(ni, intact), s.delta_max.assign(ni), s.conormal.assign(ni), s.activation_offset.assign(ni);
   for (auto* rows : {&s.cohesive_energy, &s.cohesive_dissipation, &s.interface_activation_loss, &s.penalty_energy})
     rows->assign(ni);
   for (LocalId le = 0; le < no; ++le)

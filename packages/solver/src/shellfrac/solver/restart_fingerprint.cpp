@@ -39,7 +39,7 @@ std::string value_text(const Teuchos::ParameterEntry& e) {
   } else if (e.isType<Teuchos::Array<double>>()) {
     const auto& a = e.getValue<Teuchos::Array<double>>(static_cast<Teuchos::Array<double>*>(nullptr));
     os << "{";
-    for (std::size_t i = 0; i < a.size(); ++i) os << (i ? ", " : "") << a[i];
+    for (long i = 0; i < static_cast<long>(a.size()); ++i) os << (i ? ", " : "") << a[i];
     os << "}";
   } else {
     e.leftshift(os, false);

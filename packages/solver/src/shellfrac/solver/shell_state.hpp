@@ -87,6 +87,7 @@ struct ShellState {
   std::vector<int> mode;         ///< InterfaceMode
   Rows<3, 1> delta_max;          ///< largest effective opening reached at each edge point (docs/theory.md §9.2)
   Rows<3, 3> conormal;           ///< last current co-normal at each edge point (docs/theory.md §9.1)
+  Rows<3, 6> activation_offset;    ///< jumps less the law's opening at activation, in the interface frame (theory.md §9.6)
   Scalars cohesive_energy, cohesive_dissipation;  ///< stored and dissipated cohesive energy
   Scalars interface_activation_loss;  ///< penalty energy released at activation
   Scalars penalty_energy;        ///< U_stab of an intact interface
@@ -107,6 +108,7 @@ struct ShellState {
   template <class State, class Visit>
   static void visit_interface_fields(State& s, Visit&& visit) {
     visit("mode", s.mode), visit("delta_max", s.delta_max), visit("conormal", s.conormal);
+    visit("activation_offset", s.activation_offset);
     visit("cohesive_energy", s.cohesive_energy), visit("cohesive_dissipation", s.cohesive_dissipation);
     visit("activation_loss", s.interface_activation_loss), visit("penalty_energy", s.penalty_energy);
   }
