@@ -1,0 +1,157 @@
+#!/usr/bin/env python3
+"""Results do not depend on the number of ranks x Kokkos OpenMP threads (built against a Trilinos with Kokkos
+OpenMP: tools/build-trilinos.sh, README "for threads"; ctest label `threads`).
+
+Each deck runs at (ranks x threads) in {1, 2} x {1, 2, 4} and is compared with the 1 x 1 run, bitwise: the
+history and, where the deck fractures, the crack log and the fragment table (files byte for byte), and every
+field of the Exodus results at every output (shellfrac_exocompare with zero tolerances, except the element
+variable `rank`, which is the owning rank by definition). Decks: the cylindrical panel (elastic-plastic, paper
+§6.1) and the beam blast at 225 m/s (plasticity, shear-off with Gamma = 0, fragments; paper §6.3), both shortened
+(`END_TIMES`: the beam has sheared off by then), and a cylinder torn open by a pressure pulse (cohesive
+activation, softening and separation with Gamma > 0 at high opening rates: the deck of
+packages/solver/test/test_fast_fracture.cpp, about 50 edges separate), so that the suite runs in minutes on 2 cores.
+
+usage: test_threads.py PROJECT_DIR SHELLFRAC EXOCOMPARE MPIEXEC [MPIEXEC_PREFLAGS...]
+"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cli"))
+from cli_common import ENV, Launcher  # noqa: E402
+
+PROJECT, SHELLFRAC, EXOCOMPARE, MPIEXEC = sys.argv[1:5]
+PREFLAGS = sys.argv[5:]
+launch = Launcher(MPIEXEC, PREFLAGS)
+
+END_TIMES = {"cylindrical_panel": 2e-4, "beam_blast_225": 3e-5}
+
+TORN_CYLINDER = """<ParameterList name="shellfrac">
+  <ParameterList name="Mesh">
+    <Parameter name="Source" type="string" value="Cylinder"/>
+    <ParameterList name="Cylinder">
+      <Parameter name="Radius" type="double" value="0.6"/>
+      <Parameter name="Length" type="double" value="1.2"/>
+      <Parameter name="Axial Elements" type="int" value="12"/>
+      <Parameter name="Circumferential Elements" type="int" value="38"/>
+      <Parameter name="Block Name" type="string" value="skin"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Blocks">
+    <ParameterList name="skin">
+      <Parameter name="Thickness" type="double" value="1.5e-3"/>
+      <Parameter name="Material" type="string" value="al"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Materials">
+    <ParameterList name="al">
+      <Parameter name="Density" type="double" value="2700"/>
+      <Parameter name="Young's Modulus" type="double" value="72e9"/>
+      <Parameter name="Poisson's Ratio" type="double" value="0.34"/>
+      <Parameter name="Cohesive Strength" type="double" value="540e6"/>
+      <Parameter name="Fracture Energy" type="double" value="50e3"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Regions">
+    <ParameterList name="patch">
+      <Parameter name="Shape" type="string" value="Cylinder Sector"/>
+      <Parameter name="Center" type="Array(double)" value="{0, 0, 0}"/>
+      <Parameter name="Axis" type="Array(double)" value="{1, 0, 0}"/>
+      <Parameter name="Reference Direction" type="Array(double)" value="{0, 0, 1}"/>
+      <Parameter name="Angle Range" type="Array(double)" value="{22.5, 135}"/>
+      <Parameter name="Axial Range" type="Array(double)" value="{0.3, 0.9}"/>
+      <Parameter name="Radius Range" type="Array(double)" value="{0.5, 0.7}"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Loads">
+    <ParameterList name="pulse">
+      <Parameter name="Type" type="string" value="Pressure"/>
+      <Parameter name="Elements" type="string" value="patch"/>
+      <Parameter name="Function" type="string" value="Exponential"/>
+      <Parameter name="Pressure" type="double" value="3.37e6"/>
+      <Parameter name="Decay Time" type="double" value="6.92e-4"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Time Integration">
+    <Parameter name="End Time" type="double" value="1.5e-4"/>
+    <Parameter name="History Interval" type="int" value="5"/>
+    <Parameter name="Output Interval" type="double" value="5e-5"/>
+  </ParameterList>
+</ParameterList>
+"""
+LAYOUTS = [(1, 2), (1, 4), (2, 1), (2, 2), (2, 4)]
+
+
+def prepare(deck, folder):
+    """Copies the deck (End Time shortened) and its meshes into folder; returns the deck path."""
+    if deck == "torn_cylinder":
+        text = TORN_CYLINDER
+    else:
+        text = open(os.path.join(PROJECT, "xml", deck + ".xml")).read()
+        text, n = re.subn(r'(<Parameter name="End Time" type="double" value=")[^"]*"', r'\g<1>%r"' % END_TIMES[deck],
+                          text)
+        assert n == 1, deck
+    os.makedirs(folder)
+    shutil.copytree(os.path.join(PROJECT, "xml", "meshes"), os.path.join(folder, "meshes"))
+    path = os.path.join(folder, deck + ".xml")
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+def run(deck_path, ranks, threads):
+    env = dict(ENV, OMP_NUM_THREADS=str(threads), OMP_PROC_BIND="false")
+    args = [SHELLFRAC, "--quiet", os.path.basename(deck_path)]
+    cmd = ([MPIEXEC, "-np", str(ranks)] + PREFLAGS if ranks > 1 else []) + args
+    r = subprocess.run(cmd, cwd=os.path.dirname(deck_path), env=env, capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, "%s at %d x %d failed:\n%s%s" % (deck_path, ranks, threads, r.stdout, r.stderr)
+
+
+def outputs(folder, base):
+    """The text outputs of a run that exist (history always; crack log and fragments when the deck fractures)."""
+    return [f for f in (base + "_history.csv", base + "_cracks.csv", base + "_fragments.csv")
+            if os.path.exists(os.path.join(folder, f))]
+
+
+class RanksTimesThreads(unittest.TestCase):
+    def check_deck(self, deck):
+        with tempfile.TemporaryDirectory() as tmp:
+            ref = prepare(deck, os.path.join(tmp, "1x1"))
+            run(ref, 1, 1)
+            ref_dir = os.path.dirname(ref)
+            files = outputs(ref_dir, deck)
+            self.assertIn(deck + "_history.csv", files)
+            if deck == "torn_cylinder":  # it must tear, or the fracture paths go unchecked
+                self.assertGreater(len(open(os.path.join(ref_dir, deck + "_cracks.csv")).readlines()), 20)
+            tolerances = os.path.join(tmp, "tolerances")
+            with open(tolerances, "w") as f:
+                f.write("rank absolute 1e9   # the owning rank differs by definition\n")
+            for ranks, threads in LAYOUTS:
+                with self.subTest(deck=deck, ranks=ranks, threads=threads):
+                    path = prepare(deck, os.path.join(tmp, "%dx%d" % (ranks, threads)))
+                    run(path, ranks, threads)
+                    here = os.path.dirname(path)
+                    self.assertEqual(outputs(here, deck), files)
+                    for name in files:
+                        with open(os.path.join(ref_dir, name), "rb") as a, open(os.path.join(here, name), "rb") as b:
+                            self.assertTrue(a.read() == b.read(), "%s differs at %d x %d" % (name, ranks, threads))
+                    r = launch([EXOCOMPARE, os.path.join(ref_dir, deck + ".exo"), os.path.join(here, deck + ".exo"),
+                                "--tolerances", tolerances])
+                    self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+
+    def test_cylindrical_panel(self):
+        self.check_deck("cylindrical_panel")
+
+    def test_beam_blast_225(self):
+        self.check_deck("beam_blast_225")
+
+    def test_torn_cylinder(self):
+        self.check_deck("torn_cylinder")
+
+
+if __name__ == "__main__":
+    unittest.main(argv=sys.argv[:1], verbosity=2)

@@ -1,0 +1,186 @@
+#!/usr/bin/env python3
+"""What rotary-inertia scaling and selective mass scaling change in a fuselage-like fracture run (docs/a319.md).
+
+A closed cylinder of the A319's radius class (R = 2 m, L = 4 m, 40 x 126 cells of about 0.1 m, 10 080 TRI6) with
+the skin data of the paper's Table 4 (E = 72 GPa, nu = 0.34, h = 1.5 mm, rho = 2700 kg/m^3, Resultant
+Plasticity Y0 = 490 MPa, H = 933 MPa, sigma_c = 540 MPa) is loaded by the decompression pulse
+p(t) = p0 exp(-t/tp)(1 - t/tp), p0 = 3.37 MPa, tp = 692 us, on a cylinder sector (22.5 to 135 degrees from the
+vertical, x from 1 to 3 m). Each variant (a named set of Time Integration parameters) runs the same deck; the
+table compares the step (s_I raises the director limit; the last variant doubles the step again by mass
+scaling), the wall time, the deflection at the patch centre (a probe), the crack counts, the
+fragments, the energies and the balance error against the unscaled reference (the first variant).
+
+  /usr/bin/python3 tools/time_step_study.py -o /tmp/tss                 # the default variants, Gamma = 150 kJ/m^2
+  /usr/bin/python3 tools/time_step_study.py -o /tmp/tss -g 3.2e6 -t 1e-3 -n 2
+
+Writes <outdir>/study.csv and prints a Markdown table.
+"""
+import argparse, csv, math, os, subprocess, sys, time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DEFAULT_BINARY = os.path.join(ROOT, "build", "apps", "shellfrac", "shellfrac")
+
+# name -> Time Integration parameters (besides End Time and History Interval)
+VARIANTS = {
+    "reference": {},
+    "s_I = 4": {"Rotary Inertia Scale": 4.0},
+    "s_I = 25": {"Rotary Inertia Scale": 25.0},
+    # twice the step of the variant before it, by selective mass scaling (on this uniform mesh: every element)
+    "s_I = 25, mass-scaled to 2x": {"Rotary Inertia Scale": 25.0, "Target Time Step": "2x", "Force Mass Scaling": True},
+}
+
+DECK = """<ParameterList name="shellfrac">
+  <ParameterList name="Mesh">
+    <Parameter name="Source" type="string" value="Cylinder"/>
+    <ParameterList name="Cylinder">
+      <Parameter name="Radius" type="double" value="2.0"/>
+      <Parameter name="Length" type="double" value="4.0"/>
+      <Parameter name="Axial Elements" type="int" value="40"/>
+      <Parameter name="Circumferential Elements" type="int" value="126"/>
+      <Parameter name="Block Name" type="string" value="skin"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Blocks">
+    <ParameterList name="skin">
+      <Parameter name="Thickness" type="double" value="1.5e-3"/>
+      <Parameter name="Material" type="string" value="al"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Materials">
+    <ParameterList name="al">
+      <Parameter name="Density" type="double" value="2700"/>
+      <Parameter name="Young's Modulus" type="double" value="72e9"/>
+      <Parameter name="Poisson's Ratio" type="double" value="0.34"/>
+      <Parameter name="Model" type="string" value="Resultant Plasticity"/>
+      <Parameter name="Yield Stress" type="double" value="490e6"/>
+      <Parameter name="Hardening Modulus" type="double" value="933e6"/>
+      <Parameter name="Cohesive Strength" type="double" value="540e6"/>
+      <Parameter name="Fracture Energy" type="double" value="{gamma}"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Regions">
+    <ParameterList name="patch">
+      <Parameter name="Shape" type="string" value="Cylinder Sector"/>
+      <Parameter name="Center" type="Array(double)" value="{{0, 0, 0}}"/>
+      <Parameter name="Axis" type="Array(double)" value="{{1, 0, 0}}"/>
+      <Parameter name="Reference Direction" type="Array(double)" value="{{0, 0, 1}}"/>
+      <Parameter name="Angle Range" type="Array(double)" value="{{22.5, 135}}"/>
+      <Parameter name="Axial Range" type="Array(double)" value="{{1.0, 3.0}}"/>
+      <Parameter name="Radius Range" type="Array(double)" value="{{1.8, 2.2}}"/>
+    </ParameterList>
+    <ParameterList name="centre">
+      <Parameter name="Shape" type="string" value="Sphere"/>
+      <Parameter name="Center" type="Array(double)" value="{{{cx}, {cy}, {cz}}}"/>
+      <Parameter name="Radius" type="double" value="0.03"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Loads">
+    <ParameterList name="pulse">
+      <Parameter name="Type" type="string" value="Pressure"/>
+      <Parameter name="Elements" type="string" value="patch"/>
+      <Parameter name="Function" type="string" value="Exponential"/>
+      <Parameter name="Pressure" type="double" value="3.37e6"/>
+      <Parameter name="Decay Time" type="double" value="6.92e-4"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Time Integration">
+    <Parameter name="End Time" type="double" value="{end}"/>
+    <Parameter name="History Interval" type="int" value="{hist}"/>
+    <Parameter name="Output Interval" type="double" value="{end}"/>
+{extra}  </ParameterList>
+  <ParameterList name="Output">
+    <Parameter name="Base Name" type="string" value="run"/>
+    <Parameter name="Fields" type="Array(string)" value="{{displ, damage, fragment_id}}"/>
+    <Parameter name="Probes" type="Array(string)" value="{{centre}}"/>
+  </ParameterList>
+</ParameterList>
+"""
+
+COLUMNS = ["variant", "dt_us", "steps", "wall_s", "us_per_elem_step", "added_mass_pct", "w_peak_mm", "w_end_mm",
+           "t_first_crack_us", "cohesive_edges", "separated_edges", "fragments", "kinetic_J", "plastic_J",
+           "cohesive_dissipation_J", "external_work_J", "balance_error_pct_of_work"]
+
+
+def parameter_xml(name, value):
+    if isinstance(value, bool):
+        return '    <Parameter name="%s" type="bool" value="%s"/>\n' % (name, "true" if value else "false")
+    return '    <Parameter name="%s" type="double" value="%r"/>\n' % (name, value)
+
+
+def read_history(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    return [{k: float(v) for k, v in r.items()} for r in rows]
+
+
+def run_variant(args, name, params, previous_dt):
+    folder = os.path.join(args.outdir, name.replace(" ", "").replace(",", "_").replace("=", ""))
+    os.makedirs(folder, exist_ok=True)
+    extra = ""
+    for key, value in params.items():
+        if value == "2x":
+            value = 2.0 * previous_dt
+        extra += parameter_xml(key, value)
+    theta = math.radians(0.5 * (22.5 + 135.0))  # the patch centre: counter-clockwise about +x from +z
+    deck = DECK.format(gamma=args.gamma, end=args.end_time, hist=args.history_interval, extra=extra,
+                       cx=2.0, cy=-2.0 * math.sin(theta), cz=2.0 * math.cos(theta))
+    with open(os.path.join(folder, "run.xml"), "w") as f:
+        f.write(deck)
+    command = ["mpirun", "-np", str(args.ranks), args.binary, "run.xml"]
+    start = time.time()
+    with open(os.path.join(folder, "run.log"), "w") as log:
+        rc = subprocess.call(command, cwd=folder, stdout=log, stderr=subprocess.STDOUT)
+    wall = time.time() - start
+    text = open(os.path.join(folder, "run.log")).read()
+    if rc != 0:
+        sys.exit("%s: shellfrac failed (exit %d), see %s" % (name, rc, os.path.join(folder, "run.log")))
+    added = 0.0
+    for line in text.splitlines():  # "mass scaling: ... added mass 0.0326 = 1.23 % of 2.65; ..."
+        if "added mass" in line and "%" in line:
+            added = float(line.split("=")[1].split("%")[0])
+    rows = read_history(os.path.join(folder, "run_history.csv"))
+    radial = [math.hypot(r["centre_displ_y"], r["centre_displ_z"]) for r in rows]  # the probe's motion in y-z
+    first_crack = next((r["time"] for r in rows if r["num_cohesive_edges"] > 0), float("nan"))
+    last = rows[-1]
+    elements = 40 * 126 * 2
+    return {
+        "variant": name, "dt_us": 1e6 * last["dt"], "steps": int(last["step"]), "wall_s": wall,
+        "us_per_elem_step": 1e6 * wall / (elements * max(1, last["step"])), "added_mass_pct": added,
+        "w_peak_mm": 1e3 * max(radial), "w_end_mm": 1e3 * radial[-1], "t_first_crack_us": 1e6 * first_crack,
+        "cohesive_edges": int(last["num_cohesive_edges"]), "separated_edges": int(last["num_separated_edges"]),
+        "fragments": int(last["num_fragments"]), "kinetic_J": last["kinetic_energy"],
+        "plastic_J": last["plastic_dissipation"], "cohesive_dissipation_J": last["cohesive_dissipation"],
+        "external_work_J": last["external_work"],
+        "balance_error_pct_of_work": 100 * last["energy_balance_error"] / max(1e-300, last["external_work"]),
+    }
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("-o", "--outdir", required=True)
+    ap.add_argument("-g", "--gamma", type=float, default=150e3, help="Fracture Energy [J/m^2] (default 150e3)")
+    ap.add_argument("-t", "--end-time", type=float, default=6e-4)
+    ap.add_argument("--history-interval", type=int, default=20)
+    ap.add_argument("-n", "--ranks", type=int, default=2)
+    ap.add_argument("-b", "--binary", default=DEFAULT_BINARY)
+    ap.add_argument("--variants", nargs="*", default=list(VARIANTS), help="names from: " + ", ".join(VARIANTS))
+    args = ap.parse_args()
+    os.makedirs(args.outdir, exist_ok=True)
+    results, previous_dt = [], 0.0
+    for name in args.variants:
+        r = run_variant(args, name, VARIANTS[name], previous_dt)
+        previous_dt = 1e-6 * r["dt_us"]
+        results.append(r)
+        print("%s: done in %.0f s" % (name, r["wall_s"]), file=sys.stderr)
+    with open(os.path.join(args.outdir, "study.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=COLUMNS)
+        w.writeheader()
+        w.writerows(results)
+    print("| " + " | ".join(COLUMNS) + " |")
+    print("|" + "---|" * len(COLUMNS))
+    for r in results:
+        print("| " + " | ".join(("%.4g" % r[c]) if isinstance(r[c], float) else str(r[c]) for c in COLUMNS) + " |")
+
+
+if __name__ == "__main__":
+    main()
