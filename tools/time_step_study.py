@@ -13,7 +13,7 @@ fragments, the energies and the balance error against the unscaled reference (th
   /usr/bin/python3 tools/time_step_study.py -o /tmp/tss                 # the default variants, Gamma = 150 kJ/m^2
   /usr/bin/python3 tools/time_step_study.py -o /tmp/tss -g 3.2e6 -t 1e-3 -n 2
 
-Writes <outdir>/study.csv and prints a Markdown table.
+Writes <outdir>/study.csv and prints a Markdown table. As root, `source tools/mpi-env.sh` first (Open MPI).
 """
 import argparse, csv, math, os, subprocess, sys, time
 
@@ -126,7 +126,7 @@ def run_variant(args, name, params, previous_dt):
                        cx=2.0, cy=-2.0 * math.sin(theta), cz=2.0 * math.cos(theta))
     with open(os.path.join(folder, "run.xml"), "w") as f:
         f.write(deck)
-    command = ["mpirun", "-np", str(args.ranks), args.binary, "run.xml"]
+    command = (["mpirun", "-np", str(args.ranks)] if args.ranks > 1 else []) + [args.binary, "run.xml"]
     start = time.time()
     with open(os.path.join(folder, "run.log"), "w") as log:
         rc = subprocess.call(command, cwd=folder, stdout=log, stderr=subprocess.STDOUT)
