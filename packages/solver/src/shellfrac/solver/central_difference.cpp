@@ -1,5 +1,6 @@
 #include "shellfrac/solver/central_difference.hpp"
 
+#include <Kokkos_Core.hpp>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -16,6 +17,16 @@
 #include "shellfrac/solver/shell_model.hpp"
 
 namespace shellfrac::solver {
+
+namespace {
+/// for_each(n, body): body(i) for i in [0, n) on the host execution space (threads with Kokkos OpenMP). The bodies
+/// below write only the rows of their own node or element, so the result does not depend on the thread count.
+template <class Body>
+void for_each(LocalId n, const char* name, const Body& body) {
+  Kokkos::parallel_for(name, Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, n),
+                       [&](const LocalId i) { body(i); });
+}
+}  // namespace
 
 CentralDifference::CentralDifference(ShellModel& model, Constraints& constraints, const Loads& loads,
                                      ForceAssembly& assembly, Fracture& fracture, PhaseTimes& times,
@@ -152,7 +163,7 @@ void CentralDifference::remember_step_start(const ShellState& s) {
 // a symmetry plane. Directors: Delta T = dt T-dot + dt^2/2 T-ddot, then the exponential map.
 void CentralDifference::predict(ShellState& s, double dt, double t1) {
   using Motion = Constraints::Motion;
-  for (LocalId i = 0; i < model_.owned * position_nodes; ++i) {
+  for_each(model_.owned * position_nodes, "shellfrac::PredictPositions", [&](const LocalId i) {
     double* x = s.x.point(i);
     double* v = s.v.point(i);
     const double* a = s.a.point(i);
@@ -160,7 +171,7 @@ void CentralDifference::predict(ShellState& s, double dt, double t1) {
     const Motion motion = constraints_.motion(i);
     if (motion == Motion::held) {
       for (int c = 0; c < 3; ++c) x[c] = X[c], v[c] = 0;
-      continue;
+      return;
     }
     double dx[3];
     for (int c = 0; c < 3; ++c) dx[c] = dt * v[c] + 0.5 * dt * dt * a[c];
@@ -171,7 +182,7 @@ void CentralDifference::predict(ShellState& s, double dt, double t1) {
         x[c] = p ? X[c] + u[c] : x[c] + dx[c];
         if (!p) v[c] += 0.5 * dt * a[c];
       }
-      continue;
+      return;
     }
     for (int c = 0; c < 3; ++c) v[c] += 0.5 * dt * a[c];
     if (motion == Motion::on_planes) {
@@ -179,9 +190,9 @@ void CentralDifference::predict(ShellState& s, double dt, double t1) {
       constraints_.position_planes().remove_normal_components(i, v);
     }
     for (int c = 0; c < 3; ++c) x[c] += dx[c];
-  }
+  });
   const auto& director_constraints = constraints_.director_constraints();
-  for (LocalId j = 0; j < model_.owned * director_nodes; ++j) {
+  for_each(model_.owned * director_nodes, "shellfrac::PredictDirectors", [&](const LocalId j) {
     double L[3][3], dT[2];
     load_matrix(s.rotation.point(j), L);
     const double* Td = s.director_rate.point(j);
@@ -197,7 +208,7 @@ void CentralDifference::predict(ShellState& s, double dt, double t1) {
     double* t = s.t.point(j);
     disc::update_director(t, L, dT, t, L);  // Algorithm 1
     store_matrix(L, s.rotation.point(j));
-  }
+  });
 }
 
 // Accepts the plastic state of the last element kernel as the state at the new time and adds its plastic work.
@@ -222,11 +233,11 @@ void CentralDifference::commit_plasticity(ShellState& s) const {
 // The corrector, element by element (one pass over the element's rows): accelerations and reactions at t1,
 // velocities at t1, and the work of the step.
 void CentralDifference::correct(ShellState& s, double dt, double t1) {
-  for (LocalId le = 0; le < model_.owned; ++le) {
+  for_each(model_.owned, "shellfrac::Correct", [&](const LocalId le) {
     accelerate(s, le, t1, dt, director_rate_predicted_);  // paper eq. 49, with the damping force alpha m v_pre
     correct_velocities(s, le, dt, t1);                     // paper eq. 50
     book_work(s, le);
-  }
+  });
 }
 
 // Accelerations of owned element le at time t from the current forces (paper eq. 49): a = (f_ext - f - alpha m v)/m
