@@ -1,7 +1,18 @@
 #!/usr/bin/env bash
 # Installs shellfrac's build and run dependencies from Debian 12 packages. Idempotent: does nothing when
 # everything is present. Works as root without a terminal (CI); otherwise uses sudo.
+#   tools/install-deps.sh            the build, test and plotting dependencies
+#   tools/install-deps.sh --render   also headless ParaView for tools/render.py (paraview, python3-paraview,
+#                                    xvfb, python3-pil: about 600 MB)
 set -euo pipefail
+
+RENDER=0
+for arg in "$@"; do
+  case "$arg" in
+    --render) RENDER=1 ;;
+    *) echo "install-deps: unknown option '$arg' (use --render or nothing)" >&2; exit 2 ;;
+  esac
+done
 
 PACKAGES=(
   # toolchain
@@ -16,6 +27,9 @@ PACKAGES=(
   # plotting of results (reads Exodus through netCDF4)
   python3 python3-numpy python3-matplotlib python3-netcdf4
 )
+if [ "$RENDER" -eq 1 ]; then
+  PACKAGES+=(paraview python3-paraview xvfb python3-pil)
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do
