@@ -6,9 +6,11 @@
 // not timed, then N steps (default 100) are timed. Every "us_per_element_step" value is
 //   max over ranks (seconds on the rank) * 1e6 / (global elements * N),
 // so ideal parallel speed-up lowers it. The last line is total_us_per_element_step=<value>, the wall time
-// of the N steps. Exit codes as shellfrac: 0 success, 1 input error, 2 usage error, 3 internal error.
+// of the N steps; threads=<T> is the Kokkos execution space's concurrency on each rank. Exit codes as
+// shellfrac: 0 success, 1 input error, 2 usage error, 3 internal error.
 #include <mpi.h>
 
+#include <Kokkos_Core.hpp>
 #include <Tpetra_Core.hpp>
 #include <chrono>
 #include <cstdio>
@@ -103,10 +105,12 @@ int run(int argc, char** argv) {
   const double nucleation = per_element_step(after.nucleation - before.nucleation);
   const double total = per_element_step(wall);
   const double bytes = parallel::max(dyn.bytes_per_element(), comm);
+  const int threads = Kokkos::DefaultExecutionSpace().concurrency();
   if (root) {
     std::cout << "shellfrac_bench: " << deck_file << ", " << dmesh.num_global_elements() << " elements, " << np
-              << " rank(s), " << steps << " steps (after " << warmup << " warm-up), dt = " << dyn.time_step()
-              << "\n"
+              << " rank(s) x " << threads << " thread(s), " << steps << " steps (after " << warmup
+              << " warm-up), dt = " << dyn.time_step() << "\n"
+              << "threads=" << threads << "\n"
               << "element_kernel_us_per_element_step=" << element << "\n"
               << "interface_kernel_us_per_element_step=" << interface << "\n"
               << "gather_us_per_element_step=" << gather << "\n"
