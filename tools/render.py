@@ -187,6 +187,7 @@ class Scene:
         label_display.FontSize = 14
         label_display.WindowLocation = "Upper Left Corner"
         self.colour()
+        Render(self.view)  # paraview.simple resets the camera at a view's first render: have it before aiming
 
     def colour(self):
         ColorBy(self.display, self.colour_array)

@@ -51,7 +51,10 @@ def parse():
     p.add_argument("--strong-sizes", type=int, nargs="+", default=[16000, 64000, 256000])
     p.add_argument("--deck", default=os.path.join(PROJECT, "xml", "cantilever_200x40.xml"))
     p.add_argument("-o", "--output", default="scaling", help="output base: BASE.csv and BASE.png")
+    p.add_argument("--replot", metavar="CSV", help="no runs: redraw BASE.png and the table from a CSV of this tool")
     a = p.parse_args()
+    if a.replot:
+        return a
     if a.max_cores < 1 or a.steps < 1 or a.repeats < 1 or a.warmup < 0:
         fail("--max-cores, --steps and --repeats must be positive, --warmup non-negative")
     if not os.access(a.bench, os.X_OK):
@@ -120,8 +123,28 @@ def bench_threads(a, folder, template):
     return run_bench(a, deck, 1, 2)["threads_seen"]
 
 
+def read_rows(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        fail("%s has no rows" % path)
+    for row in rows:
+        for k in row:
+            if k in ("elements", "cores", "ranks", "threads", "repeat"):
+                row[k] = int(row[k])
+            elif k != "study":
+                row[k] = float(row[k])
+    return rows
+
+
 def main():
     a = parse()
+    if a.replot:
+        summary = summarise(read_rows(a.replot))
+        print_table(summary)
+        plot(summary, a.output + ".png", None)
+        print("scaling.py: wrote %s.png" % a.output)
+        return
     template = open(a.deck).read()
     rows = []
     with tempfile.TemporaryDirectory() as folder:
@@ -136,9 +159,11 @@ def main():
         print("scaling.py: %d layouts (%s), %d runs x %d repeats, %d steps each; threads %s"
               % (len(layouts), ", ".join("%dx%d" % (r, t) for _, r, t in layouts), len(plan), a.repeats, a.steps,
                  "available" if threaded else "not built (Kokkos Serial): ranks only"), flush=True)
-        for study, cells, p, r, t in plan:
-            deck = write_deck(template, cells, folder)
-            for rep in range(a.repeats):
+        decks = {cells: write_deck(template, cells, folder) for _, cells, _, _, _ in plan}
+        # the repeats go round the whole plan, so that a slow spell of the machine hits every layout alike
+        for rep in range(a.repeats):
+            for study, cells, p, r, t in plan:
+                deck = decks[cells]
                 v = run_bench(a, deck, r, t)
                 seconds = v["total_us_per_element_step"] * v["elements"] * 1e-6
                 row = {"study": study, "elements": v["elements"], "cores": p, "ranks": r, "threads": t,
@@ -173,7 +198,9 @@ def summarise(rows):
     for key, g in sorted(groups.items()):
         study, size, cores, ranks, threads = key
         entry = {"study": study, "size": size, "elements": g[0]["elements"], "cores": cores, "ranks": ranks,
-                 "threads": threads, "seconds": statistics.median(r["seconds_per_step"] for r in g)}
+                 "threads": threads, "seconds": statistics.median(r["seconds_per_step"] for r in g),
+                 "low": min(r["seconds_per_step"] for r in g), "high": max(r["seconds_per_step"] for r in g),
+                 "runs": len(g)}
         for ph in PHASES:
             entry[ph] = statistics.median(r[ph] for r in g)
         summary.append(entry)
@@ -185,12 +212,13 @@ def summarise(rows):
 
 
 def print_table(summary):
-    print("| study | elements | cores | ranks x threads | s per step | efficiency | communication µs/el-step |")
-    print("|---|---:|---:|---|---:|---:|---:|")
+    print("| study | elements | cores | ranks x threads | s per step (median) | min - max | runs | efficiency | "
+          "communication µs/el-step |")
+    print("|---|---:|---:|---|---:|---|---:|---:|---:|")
     for e in summary:
-        print("| %s | %d | %d | %d x %d | %.4g | %.2f | %.3f |" % (e["study"], e["elements"], e["cores"], e["ranks"],
-                                                                   e["threads"], e["seconds"], e["efficiency"],
-                                                                   e["communication"]))
+        print("| %s | %d | %d | %d x %d | %.4g | %.4g - %.4g | %d | %.2f | %.3f |"
+              % (e["study"], e["elements"], e["cores"], e["ranks"], e["threads"], e["seconds"], e["low"], e["high"],
+                 e["runs"], e["efficiency"], e["communication"]))
 
 
 def plot(summary, path, steps):
@@ -226,11 +254,14 @@ def plot(summary, path, steps):
         ax.set_xticks(all_cores)
         ax.xaxis.set_major_formatter(ticker.ScalarFormatter())
         ax.xaxis.set_minor_locator(ticker.NullLocator())
+        ax.yaxis.set_major_locator(ticker.LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
         ax.yaxis.set_major_formatter(ticker.FormatStrFormatter("%.3g"))
-        ax.yaxis.set_minor_formatter(ticker.FormatStrFormatter("%.3g"))
+        seconds = [e["seconds"] for e in entries]
+        within_a_decade = max(seconds) < 10 * min(seconds)
+        ax.yaxis.set_minor_formatter(ticker.FormatStrFormatter("%.3g") if within_a_decade else ticker.NullFormatter())
         ax.set_xlabel("cores (ranks x threads)")
         ax.set_ylabel("wall time per step [s]")
-        ax.set_title("%s scaling (%d steps)" % (study, steps))
+        ax.set_title("%s scaling" % study + (" (%d steps)" % steps if steps else ""))
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8)
     fig.tight_layout()
