@@ -169,7 +169,7 @@ def main():
     ax[0, 0].step(np.concatenate([[0.0], crack_time[order] * scale, [t_end]]),
                   np.concatenate([[0.0], np.cumsum(lengths[order]), [np.sum(lengths)]]), where="post", color="C3")
     ax[0, 0].set_xlabel("time [%s]" % a.time_unit)
-    ax[0, 0].set_ylabel("crack length (activated edges)")
+    ax[0, 0].set_ylabel("crack length of the activated edges (mesh units)")
     ax[0, 0].grid(alpha=0.3)
     ax[0, 1].plot(history["time"] * scale, history["num_cohesive_edges"], label="activated edges")
     ax[0, 1].plot(history["time"] * scale, history["num_separated_edges"], label="separated edges")

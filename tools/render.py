@@ -8,7 +8,7 @@ Pictures are written for the chosen times and views; `--animate` writes an anima
 
 usage (Debian 12: tools/install-deps.sh --render installs paraview, python3-paraview, xvfb and python3-pil):
   tools/render.py RESULTS [--field damage] [--time T ...] [--view iso ...]
-        [--focus X Y Z --direction DX DY DZ --distance D] [--range LO HI] [--size 1280 720]
+        [--focus X Y Z --direction DX DY DZ --distance D] [--zoom Z] [--range LO HI] [--size 1280 720]
         [--animate OUT.gif --fps 8 --every 1] [-o OUT.png]
 
 RESULTS is `run.exo`, one file of a per-rank set (`run.exo.2.0`) or the set's base name (`run.exo`). Times are
@@ -129,6 +129,7 @@ def parse():
     p.add_argument("--direction", type=float, nargs=3, help="from the focus towards the camera (view 'custom')")
     p.add_argument("--up", type=float, nargs=3, default=(0.0, 0.0, 1.0))
     p.add_argument("--distance", type=float, help="camera distance from the focus (default: fit the model)")
+    p.add_argument("--zoom", type=float, default=1.0, help="move the camera towards the focus by this factor")
     p.add_argument("--range", type=float, nargs=2, help="colour range (default: damage and plastic strain 0..max)")
     p.add_argument("--size", type=int, nargs=2, default=(1280, 720))
     p.add_argument("--title", default="", help="text in the upper left corner; the time is appended")
@@ -142,8 +143,8 @@ def parse():
         a.view = ["custom"]
     if "custom" in a.view and not a.direction:
         fail("--view custom needs --direction DX DY DZ")
-    if a.every < 1 or a.fps <= 0:
-        fail("--every must be >= 1 and --fps > 0")
+    if a.every < 1 or a.fps <= 0 or a.zoom <= 0:
+        fail("--every must be >= 1, --fps and --zoom > 0")
     return a
 
 
@@ -254,6 +255,8 @@ class Scene:
             position = camera.GetPosition()
             fit = math.sqrt(builtins.sum((p - f) ** 2 for p, f in zip(position, camera.GetFocalPoint())))
             camera.SetPosition([f + fit * d for f, d in zip(focus, direction)])
+        if a.zoom != 1.0:
+            camera.Dolly(a.zoom)
         self.view.CameraParallelProjection = 0
 
     def save(self, path):
