@@ -1,0 +1,102 @@
+#!/usr/bin/env python3
+"""The pure parts of the post-processing tools, against exact values.
+
+* tools/scaling.py: the weak study keeps 16 000 elements per core for every power of 2 (the paper's §6.4 strip,
+  200 x 40 cells of two triangles, refined x4 per cores x4 and doubled along the length in between); the strong
+  sizes map to the refinements of the same strip.
+* tools/fracture_summary.py: the length of the edge two P2 (or P1) elements share, measured along the edge's
+  quadratic curve. For a straight edge whose mid-side node sits anywhere strictly inside it the curve runs
+  monotonically along the chord, so the length is the chord exactly (the speed |x'(s)| is linear in s, which
+  the 3-point Gauss rule integrates exactly); a circular arc of angle 2a through three nodes is a parabola whose
+  length has a closed form. Each Exodus TRI6 edge (01, 12, 20) must use its own mid-side node (3, 4, 5).
+
+usage: test_analysis_tools.py PROJECT_DIR
+"""
+import math
+import os
+import sys
+import unittest
+
+import numpy as np
+
+PROJECT = sys.argv.pop(1) if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
+sys.path.insert(0, os.path.join(PROJECT, "tools"))
+import fracture_summary  # noqa: E402
+import scaling  # noqa: E402
+
+
+class WeakAndStrongSizes(unittest.TestCase):
+    def test_sixteen_thousand_elements_per_core(self):
+        for cores in (1, 2, 4, 8, 16, 32, 64, 128, 256):
+            nx, ny = scaling.cells_for_weak(cores)
+            self.assertEqual(2 * nx * ny, 16000 * cores, cores)
+            self.assertIn(nx * 40 / (ny * 200), (1.0, 2.0), cores)  # square cells, or doubled along x
+
+    def test_uniform_refinement_at_powers_of_four(self):
+        self.assertEqual(scaling.cells_for_weak(4), (400, 80))
+        self.assertEqual(scaling.cells_for_weak(16), (800, 160))
+        self.assertEqual(scaling.cells_for_weak(2), (400, 40))
+
+    def test_strong_sizes(self):
+        self.assertEqual(scaling.cells_for_size(16000), (200, 40))
+        self.assertEqual(scaling.cells_for_size(64000), (400, 80))
+        self.assertEqual(scaling.cells_for_size(256000), (800, 160))
+
+
+def tri6(v0, v1, v2, m01=None, m12=None, m20=None):
+    """A TRI6 node array (Exodus order: vertices, then the mid-side nodes of edges 01, 12, 20)."""
+    v = [np.array(x, dtype=float) for x in (v0, v1, v2)]
+    mids = [m if m is not None else 0.5 * (a + b) for m, a, b in ((m01, v[0], v[1]), (m12, v[1], v[2]),
+                                                                    (m20, v[2], v[0]))]
+    return np.array(v + [np.array(m, dtype=float) for m in mids])
+
+
+class SharedEdgeLength(unittest.TestCase):
+    def test_straight_edge_with_an_off_centre_mid_node_is_its_chord(self):
+        a, b = np.array([0.0, 0.0, 0.0]), np.array([3.0, 4.0, 0.0])  # length 5
+        mid = a + 0.3 * (b - a)
+        minus = tri6(a, b, [0.0, 5.0, 1.0], m01=mid, m12=[9, 9, 9], m20=[-9, 9, 9])
+        plus = tri6(b, a, [4.0, -1.0, 0.0], m01=mid)
+        self.assertAlmostEqual(fracture_summary.edge_length(minus, plus), 5.0, places=12)
+
+    def test_each_edge_uses_its_own_mid_side_node(self):
+        a, b, c = [0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]
+        far = [50.0, 50.0, 50.0]  # a wrong mid-side node would give a length far from 2
+        for edge, (p, q) in enumerate(((a, b), (b, c), (c, a))):
+            mids = [far, far, far]
+            mids[edge] = list(0.5 * (np.array(p) + np.array(q)))
+            minus = tri6(a, b, c, *mids)
+            plus = tri6(q, p, [5.0, 5.0, -3.0])
+            self.assertAlmostEqual(fracture_summary.edge_length(minus, plus), float(np.linalg.norm(np.subtract(q, p))),
+                                   places=12, msg="edge %d" % edge)
+
+    def test_circular_arc_through_three_nodes(self):
+        # nodes on a circle of radius R at angles -a, 0, a: the P2 curve through them is the parabola
+        # y(x) = R cos a - ... ; its exact length L = 2 int_0^w sqrt(1 + (2 k x)^2) dx with half-width w = R sin a
+        # and k = (R - R cos a) / w^2 (the sagitta over w^2); the 3-point Gauss rule integrates it to 1e-4 here.
+        R, half = 2.0, 0.05
+        p = [R * math.sin(-half), R * math.cos(half) - R, 0.0]
+        q = [R * math.sin(half), R * math.cos(half) - R, 0.0]
+        mid = [0.0, 0.0, 0.0]
+        w = R * math.sin(half)
+        k = (R - R * math.cos(half)) / w ** 2
+        exact = 2 * (w * math.sqrt(1 + (2 * k * w) ** 2) / 2 + math.asinh(2 * k * w) / (4 * k))
+        minus = tri6(p, q, [0.0, -1.0, 0.0], m01=mid)
+        plus = tri6(q, p, [0.0, 1.0, 0.0], m01=mid)
+        length = fracture_summary.edge_length(minus, plus)
+        self.assertAlmostEqual(length, exact, delta=1e-4 * exact)
+        self.assertGreater(length, float(np.linalg.norm(np.subtract(q, p))))  # longer than the chord
+
+    def test_p1_elements_use_the_chord(self):
+        minus = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+        plus = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.5, -1.0, 0.0]])
+        self.assertAlmostEqual(fracture_summary.edge_length(minus, plus), 1.0, places=14)
+
+    def test_elements_without_a_shared_edge(self):
+        minus = tri6([0, 0, 0], [1, 0, 0], [0, 1, 0])
+        plus = tri6([5, 0, 0], [6, 0, 0], [5, 1, 0])
+        self.assertIsNone(fracture_summary.edge_length(minus, plus))
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=1)
