@@ -90,6 +90,17 @@ def edge_length(a, b):
     return float(total)
 
 
+def pieces_at(fragments, t, min_elements):
+    """The fragment table at output time t: masses, the index of the main piece (most elements), and which
+    of the others count as fragments (at least min_elements elements)."""
+    sel = fragments["time"] == t
+    masses, counts = fragments["mass"][sel], fragments["elements"][sel]
+    main_piece = int(np.argmax(counts))
+    keep = counts >= min_elements
+    keep[main_piece] = False
+    return masses, main_piece, keep
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("base")
@@ -123,20 +134,16 @@ def main():
     frame_times = np.unique(fragments["time"])
     rows = []
     for t in frame_times:
-        sel = fragments["time"] == t
-        masses, counts = fragments["mass"][sel], fragments["elements"][sel]
-        main_piece = np.argmax(counts)
-        pieces = np.delete(np.arange(len(masses)), main_piece)
-        pieces = pieces[counts[pieces] >= a.min_elements]
+        masses, main_piece, keep = pieces_at(fragments, t, a.min_elements)
         h = np.argmin(np.abs(history["time"] - t))
         rows.append({
             "time": t,
             "crack_length": float(np.sum(lengths[crack_time <= t * (1 + 1e-12)])),
             "cohesive_edges": int(history["num_cohesive_edges"][h]),
             "separated_edges": int(history["num_separated_edges"][h]),
-            "fragments": int(len(pieces)),
-            "fragment_mass": float(np.sum(masses[pieces])),
-            "largest_fragment_mass": float(np.max(masses[pieces])) if len(pieces) else 0.0,
+            "fragments": int(np.sum(keep)),
+            "fragment_mass": float(np.sum(masses[keep])),
+            "largest_fragment_mass": float(np.max(masses[keep])) if keep.any() else 0.0,
             "main_piece_mass": float(masses[main_piece]),
         })
     tmp = out_csv + ".part"
@@ -148,10 +155,7 @@ def main():
     os.replace(tmp, out_csv)
 
     t_pick = frame_times[-1] if a.time is None else frame_times[np.argmin(np.abs(frame_times - a.time))]
-    sel = fragments["time"] == t_pick
-    masses, counts = fragments["mass"][sel], fragments["elements"][sel]
-    main_piece = np.argmax(counts)
-    keep = np.array([k != main_piece and counts[k] >= a.min_elements for k in range(len(masses))], dtype=bool)
+    masses, _, keep = pieces_at(fragments, t_pick, a.min_elements)
     scale = {"s": 1.0, "ms": 1e3, "us": 1e6}[a.time_unit]
     row = rows[int(np.argmin(np.abs(frame_times - t_pick)))]
     print("t = %g %s: crack length %.4g, %d cohesive and %d separated edges, %d fragments (of >= %d elements) of "

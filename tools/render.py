@@ -289,12 +289,12 @@ def write_gif(frames, path, fps):
 
 def main():
     args = parse()
+    for path in [args.output] + ([args.animate] if args.animate else []):
+        if not os.path.isdir(os.path.dirname(os.path.abspath(path))):
+            fail("output folder of %s does not exist" % path)
     scene = Scene(args)
     times = [nearest(scene.times, t) for t in args.time] if args.time else [scene.times[-1]]
     several = len(times) * len(args.view) > 1
-    out_dir = os.path.dirname(os.path.abspath(args.output))
-    if not os.path.isdir(out_dir):
-        fail("output folder %s does not exist" % out_dir)
     for t in times:
         scene.go_to(t)
         for v in args.view:
