@@ -167,6 +167,12 @@ DistributedMesh::DistributedMesh(const mesh::SerialMesh& mesh, const mesh::EdgeT
   maps_->send_rows.assign(sent.begin(), sent.end());
   std::sort(maps_->send_rows.begin(), maps_->send_rows.end());
   maps_->send_rows.erase(std::unique(maps_->send_rows.begin(), maps_->send_rows.end()), maps_->send_rows.end());
+  std::vector<tpetra_go> send_gids;
+  send_gids.reserve(maps_->send_rows.size());
+  for (const LocalId le : maps_->send_rows) send_gids.push_back(gids[std::size_t(le)]);
+  maps_->senders = Teuchos::rcp(new map_type(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                             view_of(send_gids, 0, send_gids.size()), tpetra_go(0), tcomm));
+  maps_->send_importer = Teuchos::rcp(new import_type(maps_->senders, maps_->ghosts));
 }
 
 DistributedMesh::~DistributedMesh() = default;

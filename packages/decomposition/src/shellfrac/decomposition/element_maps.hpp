@@ -4,8 +4,9 @@
 /// Element rows: `owned` is one-to-one; `overlap` = owned GIDs first then ghosts (the one ghost layer);
 /// `ghosts` = the ghost GIDs alone, in the overlap's order.
 /// Data flow every step (docs/parallel.md): owned -> Import(INSERT) -> ghosts -> kernels. The per-step
-/// transfers use `ghost_importer`, so that only the rows other ranks hold as ghosts (`send_rows`) are packed and
-/// only the ghost rows are received: the owned rows are never copied (at np = 1 nothing moves at all).
+/// transfers use `send_importer`, from `senders` (the owned rows other ranks hold as ghosts, `send_rows`) to
+/// `ghosts`: only those rows are packed, into a vector of their size, and only the ghost rows are received; the
+/// owned rows are never copied (at np = 1 nothing moves at all).
 #include <Tpetra_Import.hpp>
 #include <Tpetra_Map.hpp>
 #include <Tpetra_MultiVector.hpp>
@@ -34,6 +35,8 @@ struct ElementMaps {
   Teuchos::RCP<const map_type> ghosts;       ///< the ghosts only: overlap rows num_owned.. in the same order
   Teuchos::RCP<const import_type> ghost_importer;  ///< owned -> ghosts (remote rows only, no same/permute rows)
   std::vector<LocalId> send_rows;  ///< owned rows that another rank holds as a ghost (sorted, unique)
+  Teuchos::RCP<const map_type> senders;  ///< one-to-one: the GIDs of send_rows, in that order
+  Teuchos::RCP<const import_type> send_importer;  ///< senders -> ghosts (what the time loop uses)
 };
 
 }  // namespace shellfrac::decomposition

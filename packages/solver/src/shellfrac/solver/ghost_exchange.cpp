@@ -10,7 +10,7 @@ namespace shellfrac::solver {
 
 struct GhostExchange::Impl {
   const decomposition::DistributedMesh& dm;
-  // Per channel: owned rows (only the send rows are filled) and ghost rows.
+  // Per channel: the send rows (ElementMaps::senders, in send_rows order) and the ghost rows.
   std::vector<Teuchos::RCP<decomposition::multivector_type>> own, ghost;
   std::vector<int> width;
 };
@@ -19,7 +19,7 @@ GhostExchange::GhostExchange(const decomposition::DistributedMesh& dm, std::init
     : impl_(new Impl{dm, {}, {}, {}}) {
   const auto& maps = dm.maps();
   for (int w : channel_widths) {
-    impl_->own.push_back(Teuchos::rcp(new decomposition::multivector_type(maps.owned, w)));
+    impl_->own.push_back(Teuchos::rcp(new decomposition::multivector_type(maps.senders, w)));
     impl_->ghost.push_back(Teuchos::rcp(new decomposition::multivector_type(maps.ghosts, w)));
     impl_->width.push_back(w);
   }
@@ -37,13 +37,14 @@ void GhostExchange::import_ghost_rows(int channel, std::initializer_list<RowBuff
   const auto& maps = impl_->dm.maps();
   {
     auto s = own.getLocalViewHost(Tpetra::Access::ReadWrite);
-    for (const LocalId le : maps.send_rows) {
+    for (std::size_t r = 0; r < maps.send_rows.size(); ++r) {
+      const LocalId le = maps.send_rows[r];
       int col = 0;
       for (const auto& b : buffers)
-        for (int i = 0; i < b.width; ++i) s(le, col++) = b.data[std::size_t(le) * b.width + i];
+        for (int i = 0; i < b.width; ++i) s(r, col++) = b.data[std::size_t(le) * b.width + i];
     }
   }
-  ghost.doImport(own, *maps.ghost_importer, Tpetra::INSERT);
+  ghost.doImport(own, *maps.send_importer, Tpetra::INSERT);
   auto s = ghost.getLocalViewHost(Tpetra::Access::ReadOnly);
   const auto num_ghosts = static_cast<LocalId>(ghost.getLocalLength());
   const LocalId first = impl_->dm.num_owned();
@@ -57,7 +58,8 @@ void GhostExchange::import_ghost_rows(int channel, std::initializer_list<RowBuff
 double GhostExchange::bytes() const {
   double total = 0;
   for (std::size_t c = 0; c < impl_->width.size(); ++c)
-    total += sizeof(double) * double(impl_->width[c]) * double(impl_->dm.num_overlap());
+    total += sizeof(double) * double(impl_->width[c]) *
+             double(impl_->dm.maps().send_rows.size() + std::size_t(impl_->dm.num_ghosts()));
   return total;
 }
 

@@ -2,8 +2,8 @@
 /// \file ghost_exchange.hpp
 /// The one place where the time loop talks to other ranks about element data (docs/parallel.md): rows of
 /// per-element buffers go from their owners to the ranks that hold the element as a ghost, by a Tpetra Import
-/// with INSERT (no arithmetic, so deterministic). Only the owned rows another rank needs are packed and only the
-/// ghost rows are received; at np = 1 nothing moves. The Tpetra types stay in ghost_exchange.cpp.
+/// with INSERT (no arithmetic, so deterministic). Only the owned rows another rank needs are packed, into
+/// buffers of their size, and only the ghost rows are received; at np = 1 nothing moves. The Tpetra types stay in ghost_exchange.cpp.
 #include <initializer_list>
 #include <memory>
 
