@@ -146,6 +146,9 @@ int run(int argc, char** argv) {
       std::cout << "  " << out.steps << " steps in " << out.wall_seconds << " s ("
                 << 1e6 * out.wall_seconds / (double(out.steps) * double(out.elements)) << " us per element-step on "
                 << shellfrac::parallel::size() << " rank(s))\n";
+    std::cout << "  peak resident memory: " << out.peak_memory_max / (1024.0 * 1024 * 1024) << " GiB on rank "
+              << out.peak_memory_rank << " (the largest), " << out.peak_memory_sum / 1024.0 / double(out.elements)
+              << " kB per element over all ranks\n";
     for (const auto& f : out.files) std::cout << "  wrote " << f << "\n";
     if (out.stopped_by_signal)
       std::cout << "  stopped by SIGTERM at step " << std::max(out.restart_step, 0L) + out.steps << "; continue with --restart "

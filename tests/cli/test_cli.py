@@ -200,6 +200,29 @@ class Shellfrac(unittest.TestCase):
         self.assertTrue(m, r.stderr)
         self.assertEqual(m.group(2), "unstable_checkpoint_step%s.h5" % m.group(1))
         self.assertTrue(os.path.exists(os.path.join(self.dir, m.group(2))))
+        # With a checkpoint schedule the run keeps no copy in memory (docs/output.md): the last good state is the
+        # last checkpoint written (every 10 steps here), or none if the blow-up comes before the first one.
+        for interval, expect_file in ((10, True), (100000, False)):
+            deck = self.deck("scheduled.xml", ('<Parameter name="History Interval" type="int" value="10"/>\n'
+                                               '  </ParameterList>',
+                                               '<Parameter name="History Interval" type="int" value="10"/>'
+                                               '<Parameter name="Time Step" type="double" value="5e-6"/>'
+                                               '<Parameter name="Force Time Step" type="bool" value="true"/>'
+                                               '</ParameterList><ParameterList name="Checkpoint">'
+                                               '<Parameter name="Step Interval" type="int" value="%d"/>'
+                                               '</ParameterList>' % interval))
+            r = run([SHELLFRAC, deck], cwd=self.dir)
+            self.assertEqual(r.returncode, 3, r.stdout + r.stderr)
+            m = re.search(r"The last good state \(step (\d+), time [0-9.e+-]+\) is in (\S+);", r.stderr)
+            if expect_file:
+                self.assertTrue(m, r.stderr)
+                self.assertEqual(int(m.group(1)) % interval, 0, r.stderr)
+                self.assertEqual(m.group(2), "scheduled_checkpoint_step%s.h5" % m.group(1))
+                self.assertTrue(os.path.exists(os.path.join(self.dir, m.group(2))))
+            else:
+                self.assertIsNone(m, r.stderr)
+                self.assertIn("No checkpoint was written before the blow-up; rerun with a smaller Time Step or "
+                              "Safety Factor", r.stderr)
 
 
 class MeshTool(unittest.TestCase):

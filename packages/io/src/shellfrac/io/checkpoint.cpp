@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <memory>
 #include <numeric>
 
 #include "shellfrac/core/digest.hpp"
@@ -14,7 +15,7 @@ namespace shellfrac::io {
 
 namespace {
 
-constexpr const char* format_tag = "shellfrac checkpoint 3";
+constexpr const char* format_tag = "shellfrac checkpoint 4";
 
 /// Rows per HDF5 chunk of a table (chunked storage carries the Fletcher32 checksum of every chunk).
 constexpr hsize_t rows_per_chunk = 4096;
@@ -80,22 +81,20 @@ std::vector<std::string> attribute_names(hid_t loc) {
   return names;
 }
 
-/// Every scalar, string and table in a fixed order (maps are sorted): the broadcast buffer and the checksummed text.
-parallel::ByteWriter serialize(const CheckpointData& d) {
+/// The scalars and strings in a fixed order (maps are sorted), then the number of tables: the broadcast buffer of
+/// a read and the first item of the checksum.
+parallel::ByteWriter serialize_header(const CheckpointData& d, std::size_t num_tables) {
   parallel::ByteWriter w;
   w.put(std::int64_t(d.scalars.size()));
   for (const auto& [k, v] : d.scalars) w.put_string(k), w.put(v);
   w.put(std::int64_t(d.strings.size()));
   for (const auto& [k, v] : d.strings) w.put_string(k), w.put_string(v);
-  w.put(std::int64_t(d.tables.size()));
-  for (const auto& [k, t] : d.tables)
-    w.put_string(k), w.put(std::int64_t(t.width)), w.put_vector(t.ids), w.put_vector(t.values);
+  w.put(std::int64_t(num_tables));
   return w;
 }
 
-CheckpointData deserialize(const std::vector<char>& buffer) {
-  CheckpointData d;
-  parallel::ByteReader r(buffer);
+/// Reads what serialize_header wrote into d; returns the number of tables.
+std::int64_t deserialize_header(parallel::ByteReader& r, CheckpointData& d) {
   for (auto n = r.get<std::int64_t>(); n > 0; --n) {
     const auto k = r.get_string();
     d.scalars[k] = r.get<double>();
@@ -104,21 +103,31 @@ CheckpointData deserialize(const std::vector<char>& buffer) {
     const auto k = r.get_string();
     d.strings[k] = r.get_string();
   }
-  for (auto n = r.get<std::int64_t>(); n > 0; --n) {
-    const auto k = r.get_string();
-    CheckpointTable& t = d.tables[k];
-    t.width = static_cast<int>(r.get<std::int64_t>());
-    t.ids = r.get_vector<GlobalId>();
-    t.values = r.get_vector<double>();
-  }
-  return d;
+  return r.get<std::int64_t>();
 }
 
-std::string checksum(parallel::ByteWriter serialized) {
-  Digest digest;
-  digest.add_bytes(serialized.buffer().data(), serialized.buffer().size());
-  return digest.hex();
-}
+/// The checksum of a file: the header, then each table in name order (its name, width and ids, then its values
+/// in blocks of rows_per_chunk rows), so that writer and reader can add one table at a time.
+class Checksum {
+ public:
+  void add_header(parallel::ByteWriter header) { d_.add_bytes(header.buffer().data(), header.buffer().size()); }
+  void add_table(const std::string& name, int width, const std::vector<GlobalId>& ids) {
+    d_.add(name), d_.add(std::int64_t(width)), d_.add_bytes(ids.data(), sizeof(GlobalId) * ids.size());
+  }
+  /// Rows of values, `rows` rows of `width`; called for consecutive blocks of at most rows_per_chunk rows.
+  void add_rows(const double* values, std::size_t rows, int width) {
+    d_.add_bytes(values, sizeof(double) * rows * std::size_t(width));
+  }
+  void add_values(const std::vector<double>& values, int width) {
+    const std::size_t rows = width > 0 ? values.size() / std::size_t(width) : 0;
+    for (std::size_t r = 0; r < rows; r += rows_per_chunk)
+      add_rows(values.data() + r * std::size_t(width), std::min<std::size_t>(rows_per_chunk, rows - r), width);
+  }
+  std::string hex() const { return d_.hex(); }
+
+ private:
+  Digest d_;
+};
 
 /// Creation properties of a table's dataset: chunked with a Fletcher32 checksum per chunk (empty tables are
 /// contiguous: there is nothing to check).
@@ -131,114 +140,223 @@ Handle dataset_properties(int rank, const hsize_t* dims) {
   return dcpl;
 }
 
-void write_file(const std::string& path, const CheckpointData& d) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors are reported by us, not printed by HDF5
-  const std::string tmp = path + ".tmp";
-  // The 1.10 file format: the superblock and object headers (which hold the attributes) carry checksums too.
-  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
-  H5Pset_libver_bounds(fapl.id, H5F_LIBVER_V110, H5F_LIBVER_LATEST);
-  Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id), H5Fclose);
-  check(file.id >= 0, tmp, "cannot create the checkpoint file");
-  write_string_attribute(file.id, "format", format_tag, tmp);
-  write_string_attribute(file.id, "checksum", checksum(serialize(d)), tmp);
-  {
-    Handle g(H5Gcreate2(file.id, "scalars", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-    for (const auto& [name, v] : d.scalars) {
-      Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-      Handle attr(H5Acreate2(g.id, name.c_str(), H5T_NATIVE_DOUBLE, space.id, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
-      check(attr.id >= 0 && H5Awrite(attr.id, H5T_NATIVE_DOUBLE, &v) >= 0, tmp, "cannot write scalar " + name);
+/// Writes a checkpoint file on one rank, one table at a time: `<path>.tmp`, renamed to `<path>` by finish().
+class FileWriter {
+ public:
+  FileWriter(const std::string& path, const CheckpointData& header, std::size_t num_tables)
+      : path_(path), tmp_(path + ".tmp"), fapl_(H5Pcreate(H5P_FILE_ACCESS), H5Pclose), file_(-1, H5Fclose),
+        tables_(-1, H5Gclose) {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors are reported by us, not printed by HDF5
+    // The 1.10 file format: the superblock and object headers (which hold the attributes) carry checksums too.
+    H5Pset_libver_bounds(fapl_.id, H5F_LIBVER_V110, H5F_LIBVER_LATEST);
+    file_.id = H5Fcreate(tmp_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl_.id);
+    check(file_.id >= 0, tmp_, "cannot create the checkpoint file");
+    write_string_attribute(file_.id, "format", format_tag, tmp_);
+    checksum_.add_header(serialize_header(header, num_tables));
+    {
+      Handle g(H5Gcreate2(file_.id, "scalars", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+      for (const auto& [name, v] : header.scalars) {
+        Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+        Handle attr(H5Acreate2(g.id, name.c_str(), H5T_NATIVE_DOUBLE, space.id, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+        check(attr.id >= 0 && H5Awrite(attr.id, H5T_NATIVE_DOUBLE, &v) >= 0, tmp_, "cannot write scalar " + name);
+      }
     }
+    {
+      Handle g(H5Gcreate2(file_.id, "strings", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+      for (const auto& [name, v] : header.strings) write_string_attribute(g.id, name, v, tmp_);
+    }
+    tables_.id = H5Gcreate2(file_.id, "tables", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    check(tables_.id >= 0, tmp_, "cannot create /tables");
   }
-  {
-    Handle g(H5Gcreate2(file.id, "strings", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-    for (const auto& [name, v] : d.strings) write_string_attribute(g.id, name, v, tmp);
+  ~FileWriter() {  // not finished: an error; the temporary file goes
+    if (file_.id < 0) return;
+    H5Gclose(tables_.id), tables_.id = -1;
+    H5Fclose(file_.id), file_.id = -1;
+    std::remove(tmp_.c_str());
   }
-  Handle tables(H5Gcreate2(file.id, "tables", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-  for (const auto& [name, t] : d.tables) {
-    Handle g(H5Gcreate2(tables.id, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-    check(g.id >= 0, tmp, "cannot create table " + name);
-    const hsize_t rows = t.ids.size(), dims[2] = {rows, hsize_t(t.width)};
+  FileWriter(const FileWriter&) = delete;
+  FileWriter& operator=(const FileWriter&) = delete;
+
+  /// A table: `ids` sorted and unique; row(r) points to the width values of its row r.
+  template <class Row>
+  void table(const std::string& name, int width, const std::vector<GlobalId>& ids, const Row& row) {
+    Handle g(H5Gcreate2(tables_.id, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+    check(g.id >= 0, tmp_, "cannot create table " + name);
+    checksum_.add_table(name, width, ids);
+    const hsize_t rows = ids.size(), dims[2] = {rows, hsize_t(width)};
     {
       Handle space(H5Screate_simple(1, &rows, nullptr), H5Sclose);
       const Handle dcpl = dataset_properties(1, &rows);
       Handle ds(H5Dcreate2(g.id, "ids", H5T_NATIVE_INT64, space.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT), H5Dclose);
       check(ds.id >= 0 && (rows == 0 || H5Dwrite(ds.id, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT,
-                                                   t.ids.data()) >= 0),
-            tmp, "cannot write table " + name);
+                                                   ids.data()) >= 0),
+            tmp_, "cannot write table " + name);
     }
     Handle space(H5Screate_simple(2, dims, nullptr), H5Sclose);
     const Handle dcpl = dataset_properties(2, dims);
     Handle ds(H5Dcreate2(g.id, "values", H5T_NATIVE_DOUBLE, space.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT), H5Dclose);
-    check(ds.id >= 0 && (t.values.empty() || H5Dwrite(ds.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
-                                                         t.values.data()) >= 0),
-          tmp, "cannot write table " + name);
+    check(ds.id >= 0, tmp_, "cannot write table " + name);
+    if (width == 0) return;
+    // One chunk of rows at a time, in id order: no sorted copy of the table.
+    std::vector<double> block;
+    for (hsize_t first = 0; first < rows; first += rows_per_chunk) {
+      const hsize_t n = std::min(rows_per_chunk, rows - first);
+      block.resize(std::size_t(n) * std::size_t(width));
+      for (hsize_t r = 0; r < n; ++r)
+        std::copy_n(row(std::size_t(first + r)), width, block.begin() + std::ptrdiff_t(r * std::size_t(width)));
+      checksum_.add_rows(block.data(), n, width);
+      const hsize_t start[2] = {first, 0}, count[2] = {n, hsize_t(width)};
+      Handle file_space(H5Dget_space(ds.id), H5Sclose);
+      Handle memory(H5Screate_simple(2, count, nullptr), H5Sclose);
+      check(H5Sselect_hyperslab(file_space.id, H5S_SELECT_SET, start, nullptr, count, nullptr) >= 0 &&
+                H5Dwrite(ds.id, H5T_NATIVE_DOUBLE, memory.id, file_space.id, H5P_DEFAULT, block.data()) >= 0,
+            tmp_, "cannot write table " + name);
+    }
   }
-  H5Gclose(tables.id);
-  tables.id = -1;
-  check(H5Fflush(file.id, H5F_SCOPE_GLOBAL) >= 0, tmp, "cannot flush the checkpoint file");
-  H5Fclose(file.id);
-  file.id = -1;
-  check(std::rename(tmp.c_str(), path.c_str()) == 0, path, "cannot rename " + tmp + " to it");
-}
 
-CheckpointData read_file(const std::string& path) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors are reported by us, not printed by HDF5
-  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
-  if (file.id < 0) throw InputError(path + ": cannot open the checkpoint (missing, or not an HDF5 file)");
-  const auto root_string = [&](const char* name) {
-    Handle attr(H5Aopen(file.id, name, H5P_DEFAULT), H5Aclose);
-    return attr.id < 0 ? std::string() : read_string_attribute(attr.id, path);
-  };
-  if (root_string("format") != format_tag)
-    throw InputError(path + ": not a checkpoint of this version of shellfrac (no '" + std::string(format_tag) +
-                     "' format tag; checkpoints of other versions or other programs are not read)");
-  const std::string stored_checksum = root_string("checksum");
-  CheckpointData d;
-  {
-    Handle g(H5Gopen2(file.id, "scalars", H5P_DEFAULT), H5Gclose);
-    if (g.id < 0) throw InputError(path + ": checkpoint without /scalars");
-    for (const auto& name : attribute_names(g.id)) {
-      Handle attr(H5Aopen(g.id, name.c_str(), H5P_DEFAULT), H5Aclose);
-      double v = 0;
-      if (H5Aread(attr.id, H5T_NATIVE_DOUBLE, &v) < 0) throw InputError(path + ": unreadable scalar " + name);
-      d.scalars[name] = v;
-    }
+  /// The checksum, then flush, close and rename.
+  void finish() {
+    write_string_attribute(file_.id, "checksum", checksum_.hex(), tmp_);
+    H5Gclose(tables_.id), tables_.id = -1;
+    check(H5Fflush(file_.id, H5F_SCOPE_GLOBAL) >= 0, tmp_, "cannot flush the checkpoint file");
+    check(H5Fclose(file_.id) >= 0, tmp_, "cannot close the checkpoint file");
+    file_.id = -1;
+    check(std::rename(tmp_.c_str(), path_.c_str()) == 0, path_, "cannot rename " + tmp_ + " to it");
   }
-  {
-    Handle g(H5Gopen2(file.id, "strings", H5P_DEFAULT), H5Gclose);
-    if (g.id < 0) throw InputError(path + ": checkpoint without /strings");
-    for (const auto& name : attribute_names(g.id)) {
-      Handle attr(H5Aopen(g.id, name.c_str(), H5P_DEFAULT), H5Aclose);
-      d.strings[name] = read_string_attribute(attr.id, path);
+
+ private:
+  std::string path_, tmp_;
+  Handle fapl_, file_, tables_;
+  Checksum checksum_;
+};
+
+/// Reads a checkpoint file on one rank: the header at once, then one table at a time.
+class FileReader {
+ public:
+  explicit FileReader(const std::string& path) : path_(path), file_(-1, H5Fclose), tables_(-1, H5Gclose) {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors are reported by us, not printed by HDF5
+    file_.id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (file_.id < 0) throw InputError(path + ": cannot open the checkpoint (missing, or not an HDF5 file)");
+    const auto root_string = [&](const char* name) {
+      Handle attr(H5Aopen(file_.id, name, H5P_DEFAULT), H5Aclose);
+      return attr.id < 0 ? std::string() : read_string_attribute(attr.id, path);
+    };
+    const std::string format = root_string("format");
+    if (format != format_tag)
+      throw InputError(path + ": not a checkpoint of this version of shellfrac (" +
+                       (format.rfind("shellfrac checkpoint", 0) == 0 ? "format '" + format + "', this version reads '" +
+                                                                            std::string(format_tag) + "'"
+                                                                      : "no '" + std::string(format_tag) + "' format tag") +
+                       "; checkpoints of other versions or other programs are not read)");
+    stored_checksum_ = root_string("checksum");
+    {
+      Handle g(H5Gopen2(file_.id, "scalars", H5P_DEFAULT), H5Gclose);
+      if (g.id < 0) throw InputError(path + ": checkpoint without /scalars");
+      for (const auto& name : attribute_names(g.id)) {
+        Handle attr(H5Aopen(g.id, name.c_str(), H5P_DEFAULT), H5Aclose);
+        double v = 0;
+        if (H5Aread(attr.id, H5T_NATIVE_DOUBLE, &v) < 0) throw InputError(path + ": unreadable scalar " + name);
+        header_.scalars[name] = v;
+      }
     }
+    {
+      Handle g(H5Gopen2(file_.id, "strings", H5P_DEFAULT), H5Gclose);
+      if (g.id < 0) throw InputError(path + ": checkpoint without /strings");
+      for (const auto& name : attribute_names(g.id)) {
+        Handle attr(H5Aopen(g.id, name.c_str(), H5P_DEFAULT), H5Aclose);
+        header_.strings[name] = read_string_attribute(attr.id, path);
+      }
+    }
+    tables_.id = H5Gopen2(file_.id, "tables", H5P_DEFAULT);
+    if (tables_.id < 0) throw InputError(path + ": checkpoint without /tables");
+    table_names_ = member_names(tables_.id);
+    checksum_.add_header(serialize_header(header_, table_names_.size()));
   }
-  Handle tables(H5Gopen2(file.id, "tables", H5P_DEFAULT), H5Gclose);
-  if (tables.id < 0) throw InputError(path + ": checkpoint without /tables");
-  for (const auto& name : member_names(tables.id)) {
-    Handle g(H5Gopen2(tables.id, name.c_str(), H5P_DEFAULT), H5Gclose);
+  const CheckpointData& header() const { return header_; }
+  const std::vector<std::string>& table_names() const { return table_names_; }
+
+  /// Table `name` (the names in table_names() order).
+  CheckpointTable table(const std::string& name) {
+    Handle g(H5Gopen2(tables_.id, name.c_str(), H5P_DEFAULT), H5Gclose);
     Handle ids(H5Dopen2(g.id, "ids", H5P_DEFAULT), H5Dclose);
     Handle vals(H5Dopen2(g.id, "values", H5P_DEFAULT), H5Dclose);
-    if (ids.id < 0 || vals.id < 0) throw InputError(path + ": table " + name + " lacks ids or values");
+    if (ids.id < 0 || vals.id < 0) throw InputError(path_ + ": table " + name + " lacks ids or values");
     Handle s1(H5Dget_space(ids.id), H5Sclose), s2(H5Dget_space(vals.id), H5Sclose);
     hsize_t n = 0, dims[2] = {0, 0};
     if (H5Sget_simple_extent_ndims(s1.id) != 1 || H5Sget_simple_extent_ndims(s2.id) != 2)
-      throw InputError(path + ": table " + name + " has the wrong shape");
+      throw InputError(path_ + ": table " + name + " has the wrong shape");
     H5Sget_simple_extent_dims(s1.id, &n, nullptr);
     H5Sget_simple_extent_dims(s2.id, dims, nullptr);
-    if (dims[0] != n) throw InputError(path + ": table " + name + ": ids and values differ in length");
+    if (dims[0] != n) throw InputError(path_ + ": table " + name + ": ids and values differ in length");
     CheckpointTable t;
     t.width = static_cast<int>(dims[1]);
     t.ids.resize(n), t.values.resize(n * dims[1]);
     if ((n > 0 && H5Dread(ids.id, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, t.ids.data()) < 0) ||
         (!t.values.empty() && H5Dread(vals.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, t.values.data()) < 0))
-      throw InputError(path + ": unreadable table " + name + " (a chunk fails its checksum: the file is corrupt)");
-    if (!std::is_sorted(t.ids.begin(), t.ids.end())) throw InputError(path + ": table " + name + " is not sorted");
-    d.tables[name] = std::move(t);
+      throw InputError(path_ + ": unreadable table " + name + " (a chunk fails its checksum: the file is corrupt)");
+    if (!std::is_sorted(t.ids.begin(), t.ids.end())) throw InputError(path_ + ": table " + name + " is not sorted");
+    checksum_.add_table(name, t.width, t.ids);
+    checksum_.add_values(t.values, t.width);
+    return t;
   }
-  if (checksum(serialize(d)) != stored_checksum)
-    throw InputError(path + ": the checkpoint's contents do not match its checksum: the file is corrupt (a damaged "
-                     "copy or disk?); restart from another checkpoint");
-  return d;
+  /// After every table: the contents against the stored checksum.
+  void verify() const {
+    if (checksum_.hex() != stored_checksum_)
+      throw InputError(path_ + ": the checkpoint's contents do not match its checksum: the file is corrupt (a "
+                               "damaged copy or disk?); restart from another checkpoint");
+  }
+
+ private:
+  std::string path_;
+  Handle file_, tables_;
+  std::string stored_checksum_;
+  CheckpointData header_;
+  std::vector<std::string> table_names_;
+  Checksum checksum_;
+};
+
+// Point-to-point transfers of long vectors (MPI counts are int: sent in pieces of 2^27 values).
+template <class T>
+MPI_Datatype mpi_type();
+template <>
+MPI_Datatype mpi_type<double>() {
+  return MPI_DOUBLE;
+}
+template <>
+MPI_Datatype mpi_type<std::int64_t>() {
+  return MPI_INT64_T;
+}
+constexpr std::size_t piece = std::size_t(1) << 27;
+
+template <class T>
+void send_vector(const std::vector<T>& v, int to, MPI_Comm comm) {
+  std::uint64_t n = v.size();
+  MPI_Send(&n, 1, MPI_UINT64_T, to, 0, comm);
+  for (std::size_t off = 0; off < v.size(); off += piece)
+    MPI_Send(v.data() + off, static_cast<int>(std::min(piece, v.size() - off)), mpi_type<T>(), to, 0, comm);
+}
+
+template <class T>
+std::vector<T> receive_vector(int from, MPI_Comm comm) {
+  std::uint64_t n = 0;
+  MPI_Recv(&n, 1, MPI_UINT64_T, from, 0, comm, MPI_STATUS_IGNORE);
+  std::vector<T> v(n);
+  for (std::size_t off = 0; off < v.size(); off += piece)
+    MPI_Recv(v.data() + off, static_cast<int>(std::min(piece, v.size() - off)), mpi_type<T>(), from, 0, comm,
+             MPI_STATUS_IGNORE);
+  return v;
+}
+
+/// The names of the tables, the same on every rank (an internal error otherwise). Collective.
+std::vector<std::string> agreed_table_names(const CheckpointData& local, MPI_Comm comm) {
+  std::string mine;
+  for (const auto& [name, t] : local.tables) mine += name + '\n';
+  std::string roots = mine;
+  parallel::broadcast(roots, 0, comm);
+  SHELLFRAC_REQUIRE(!parallel::any(roots != mine, comm), "checkpoint: the ranks hold different tables");
+  std::vector<std::string> names;
+  for (const auto& [name, t] : local.tables) names.push_back(name);
+  return names;
 }
 
 }  // namespace
@@ -249,45 +367,163 @@ const double* CheckpointTable::row(GlobalId id) const {
   return values.data() + (it - ids.begin()) * width;
 }
 
+// Rank 0 writes, one table at a time: it receives that table's rows from every rank (in rank order), writes them
+// sorted by id in blocks of rows_per_chunk and frees them before the next table. Only rank 0 ever holds a whole
+// table; the other ranks send their own rows. An error on rank 0 is raised on every rank after the last table.
 void write_checkpoint(const std::string& path, const CheckpointData& local, MPI_Comm comm) {
-  // Merge every table on rank 0, sorted by id.
-  CheckpointData merged;
-  merged.scalars = local.scalars, merged.strings = local.strings;
-  for (const auto& [name, t] : local.tables) {
-    const auto ids = parallel::all_gather(t.ids, comm);  // small compared to the values; keeps the code simple
-    const auto values = parallel::all_gather(t.values, comm);
-    const int width = static_cast<int>(parallel::max(double(t.width), comm));
-    CheckpointTable& out = merged.tables[name];
-    out.width = width;
-    std::vector<std::size_t> order(ids.size());
-    std::iota(order.begin(), order.end(), std::size_t(0));
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return ids[a] < ids[b]; });
-    for (std::size_t i : order) {
-      if (!out.ids.empty() && out.ids.back() == ids[i]) continue;  // the same row from two ranks
-      out.ids.push_back(ids[i]);
-      out.values.insert(out.values.end(), values.begin() + i * width, values.begin() + (i + 1) * width);
+  const int me = parallel::rank(comm), np = parallel::size(comm);
+  const auto names = agreed_table_names(local, comm);
+  std::string error;
+  int kind = 0;  // of the first error on rank 0: 1 InputError, 2 Error, 3 OutputError
+  const auto attempt = [&](const auto& fn) {
+    if (me != 0 || kind != 0) return;
+    try {
+      fn();
+    } catch (const OutputError& e) {
+      kind = 3, error = e.what();
+    } catch (const InputError& e) {
+      kind = 1, error = e.what();
+    } catch (const std::exception& e) {
+      kind = 2, error = e.what();
     }
+  };
+  std::unique_ptr<FileWriter> writer;
+  attempt([&] { writer = std::make_unique<FileWriter>(path, local, names.size()); });
+  for (const auto& name : names) {
+    const CheckpointTable& t = local.tables.at(name);
+    const int width = static_cast<int>(parallel::max(double(t.width), comm));
+    if (me != 0) {
+      send_vector(t.ids, 0, comm), send_vector(t.values, 0, comm);
+      continue;
+    }
+    // Rank 0's own rows stay where they are; the other ranks' arrive one rank at a time.
+    std::vector<std::vector<GlobalId>> ids(static_cast<std::size_t>(np));
+    std::vector<std::vector<double>> values(static_cast<std::size_t>(np));
+    for (int r = 1; r < np; ++r)
+      ids[std::size_t(r)] = receive_vector<std::int64_t>(r, comm), values[std::size_t(r)] = receive_vector<double>(r, comm);
+    attempt([&] {
+      const auto ids_of = [&](int r) -> const std::vector<GlobalId>& { return r == 0 ? t.ids : ids[std::size_t(r)]; };
+      const auto values_of = [&](int r) -> const std::vector<double>& {
+        return r == 0 ? t.values : values[std::size_t(r)];
+      };
+      struct Source {
+        GlobalId id;
+        int rank;
+        std::size_t row;
+      };
+      std::vector<Source> rows;
+      for (int r = 0; r < np; ++r) {
+        SHELLFRAC_REQUIRE(values_of(r).size() == ids_of(r).size() * std::size_t(width),
+                          "checkpoint table " << name << ": " << values_of(r).size() << " values for "
+                                              << ids_of(r).size() << " rows of " << width << " from rank " << r);
+        for (std::size_t i = 0; i < ids_of(r).size(); ++i) rows.push_back({ids_of(r)[i], r, i});
+      }
+      // Sorted by id; a row given by two ranks (a shared id) is written once, from the lower rank.
+      std::stable_sort(rows.begin(), rows.end(), [](const Source& a, const Source& b) { return a.id < b.id; });
+      rows.erase(std::unique(rows.begin(), rows.end(), [](const Source& a, const Source& b) { return a.id == b.id; }),
+                 rows.end());
+      std::vector<GlobalId> sorted(rows.size());
+      for (std::size_t i = 0; i < rows.size(); ++i) sorted[i] = rows[i].id;
+      writer->table(name, width, sorted, [&](std::size_t i) {
+        return values_of(rows[i].rank).data() + rows[i].row * std::size_t(width);
+      });
+    });
   }
-  parallel::on_root_then_agree([&] { write_file(path, merged); }, 0, comm);
+  attempt([&] { writer->finish(); });
+  writer.reset();
+  MPI_Bcast(&kind, 1, MPI_INT, 0, comm);
+  if (kind == 0) return;
+  parallel::broadcast(error, 0, comm);
+  if (kind == 1) throw InputError(error);
+  if (kind == 3) throw OutputError(error);
+  throw Error(error);
 }
 
-CheckpointData read_checkpoint(const std::string& path, MPI_Comm comm) {
+// Rank 0 reads one table at a time and sends every rank the rows it asks for (`wanted`; a table not asked for
+// goes whole to every rank), so that no other rank ever holds more than its own rows.
+CheckpointData read_checkpoint(const std::string& path, MPI_Comm comm,
+                               const std::map<std::string, std::vector<GlobalId>>& wanted) {
+  const int me = parallel::rank(comm), np = parallel::size(comm);
+  std::unique_ptr<FileReader> reader;
   CheckpointData d;
-  std::string error;
-  if (parallel::rank(comm) == 0) {
-    try {
-      d = read_file(path);
-    } catch (const std::exception& e) {
-      error = e.what();
+  std::vector<std::string> names;
+  parallel::on_root_then_agree(
+      [&] {
+        reader = std::make_unique<FileReader>(path);
+        d.scalars = reader->header().scalars, d.strings = reader->header().strings;
+        names = reader->table_names();
+      },
+      0, comm);
+  {  // scalars, strings and the table names to every rank
+    parallel::ByteWriter w;
+    if (me == 0) {
+      w = serialize_header(d, names.size());
+      for (const auto& n : names) w.put_string(n);
+    }
+    parallel::broadcast(w.buffer(), 0, comm);
+    if (me != 0) {
+      parallel::ByteReader r(w.buffer());
+      for (auto n = deserialize_header(r, d); n > 0; --n) names.push_back(r.get_string());
     }
   }
-  parallel::broadcast(error, 0, comm);
-  if (!error.empty()) throw InputError(error);
-  // Broadcast: scalars, strings, tables.
-  parallel::ByteWriter w;
-  if (parallel::rank(comm) == 0) w = serialize(d);
-  parallel::broadcast(w.buffer(), 0, comm);
-  if (parallel::rank(comm) != 0) d = deserialize(w.buffer());
+  for (const auto& name : names) {
+    CheckpointTable table;
+    parallel::on_root_then_agree([&] { table = reader->table(name); }, 0, comm);
+    const auto ask = wanted.find(name);
+    if (ask == wanted.end()) {  // the whole table to every rank
+      parallel::ByteWriter w;
+      if (me == 0) w.put(std::int64_t(table.width)), w.put_vector(table.ids), w.put_vector(table.values);
+      parallel::broadcast(w.buffer(), 0, comm);
+      if (me != 0) {
+        parallel::ByteReader r(w.buffer());
+        table.width = static_cast<int>(r.get<std::int64_t>());
+        table.ids = r.get_vector<GlobalId>(), table.values = r.get_vector<double>();
+      }
+      d.tables[name] = std::move(table);
+      continue;
+    }
+    // The rows of the ids rank r asks for (those the file has), in the order asked.
+    const auto rows_for = [&](const std::vector<GlobalId>& ids, CheckpointTable& out) {
+      out.width = table.width;
+      for (const GlobalId id : ids) {
+        const double* row = table.row(id);
+        if (!row) continue;
+        out.ids.push_back(id);
+        out.values.insert(out.values.end(), row, row + table.width);
+      }
+    };
+    CheckpointTable mine;
+    if (me == 0) {
+      for (int r = 1; r < np; ++r) {
+        const auto ids = receive_vector<std::int64_t>(r, comm);
+        CheckpointTable theirs;
+        rows_for(ids, theirs);
+        const std::vector<std::int64_t> width{theirs.width};
+        send_vector(width, r, comm), send_vector(theirs.ids, r, comm), send_vector(theirs.values, r, comm);
+      }
+      rows_for(ask->second, mine);
+    } else {
+      send_vector(ask->second, 0, comm);
+      mine.width = static_cast<int>(receive_vector<std::int64_t>(0, comm).at(0));
+      mine.ids = receive_vector<std::int64_t>(0, comm), mine.values = receive_vector<double>(0, comm);
+    }
+    // row() needs sorted ids
+    std::vector<std::size_t> order(mine.ids.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    if (!std::is_sorted(mine.ids.begin(), mine.ids.end())) {
+      std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return mine.ids[a] < mine.ids[b]; });
+      CheckpointTable sorted;
+      sorted.width = mine.width;
+      for (const std::size_t i : order) {
+        sorted.ids.push_back(mine.ids[i]);
+        sorted.values.insert(sorted.values.end(), mine.values.begin() + std::ptrdiff_t(i * std::size_t(mine.width)),
+                             mine.values.begin() + std::ptrdiff_t((i + 1) * std::size_t(mine.width)));
+      }
+      mine = std::move(sorted);
+    }
+    d.tables[name] = std::move(mine);
+  }
+  parallel::on_root_then_agree([&] { reader->verify(); }, 0, comm);
   return d;
 }
 

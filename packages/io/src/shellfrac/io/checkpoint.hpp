@@ -5,15 +5,14 @@
 ///
 /// Layout of a file: group /tables/<name> with datasets "ids" (int64, sorted, unique) and "values" (double,
 /// rows x width); group /scalars with one double attribute per scalar; group /strings with one variable-length
-/// string attribute per string; root attribute "format" = "shellfrac checkpoint 2" and "checksum", a 128-bit
-/// digest (core/digest.hpp) of every scalar, string and table. The file uses the HDF5 1.10 format (checksummed
-/// superblock and object headers) and each table chunk carries a Fletcher32 checksum: a damaged file is refused
-/// on reading, never restarted from.
+/// string attribute per string; root attribute "format" = "shellfrac checkpoint 4" and "checksum", a 128-bit
+/// digest (core/digest.hpp) of every scalar, string and table (tables in name order, values in blocks of the
+/// chunk size). The file uses the HDF5 1.10 format (checksummed superblock and object headers) and each table
+/// chunk carries a Fletcher32 checksum: a damaged file is refused on reading, never restarted from.
 ///
-/// Writing gathers every table to rank 0 (memory O(global state) on rank 0, like the mesh; documented in
-/// docs/parallel.md), which writes `<path>.tmp` and renames it to `<path>`: a crash while writing never
-/// destroys the previous checkpoint; a failed write is an OutputError naming the file. Reading: rank 0 reads,
-/// verifies the checksums and broadcasts.
+/// Memory: rank 0 writes and reads one table at a time, so it holds at most one whole table; every other rank
+/// only ever holds its own rows (docs/parallel.md). Writing goes to `<path>.tmp`, renamed to `<path>`: a crash
+/// while writing never destroys the previous checkpoint; a failed write is an OutputError naming the file.
 #include <mpi.h>
 
 #include <map>
@@ -45,8 +44,11 @@ struct CheckpointData {
 /// the file on failure (on every rank). Collective.
 void write_checkpoint(const std::string& path, const CheckpointData& local, MPI_Comm comm);
 
-/// Reads a checkpoint on rank 0 and broadcasts it. Throws InputError naming the file if it cannot be read or is
-/// not a shellfrac checkpoint of this format, or fails a checksum. Collective.
-CheckpointData read_checkpoint(const std::string& path, MPI_Comm comm);
+/// Reads a checkpoint on rank 0: every rank gets the scalars and strings, and of each table the rows of the ids
+/// it lists in `wanted` (those the file has; sorted by id), or the whole table if `wanted` does not name it.
+/// Throws InputError naming the file if it cannot be read or is not a shellfrac checkpoint of this format, or
+/// fails a checksum. Collective.
+CheckpointData read_checkpoint(const std::string& path, MPI_Comm comm,
+                               const std::map<std::string, std::vector<GlobalId>>& wanted = {});
 
 }  // namespace shellfrac::io

@@ -128,6 +128,10 @@ io::CheckpointData ShellDynamics::checkpoint() const {
   return data;
 }
 
+std::map<std::string, std::vector<GlobalId>> ShellDynamics::checkpoint_rows() const {
+  return solver::checkpoint_rows(impl_->model.dm, impl_->model.any_plastic);
+}
+
 void ShellDynamics::restore(const io::CheckpointData& data) {
   Impl& s = *impl_;
   // The time step stays the deck's (the same deck gives the same step, hence a bitwise continuation; a deck with

@@ -8,6 +8,7 @@
 ///   interface kernel -> gather -> plasticity commit -> nucleation -> loads -> accelerations -> corrector.
 /// No force is ever summed across ranks and every global sum runs in global-id order, so results are bitwise
 /// identical for any number of ranks.
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -72,6 +73,8 @@ class ShellDynamics {
   /// The whole state needed to continue bitwise, as tables by element and interface global id
   /// (state_checkpoint.hpp). Each rank gives its owned rows. (Not collective.)
   io::CheckpointData checkpoint() const;
+  /// The checkpoint rows restore() reads on this rank (state_checkpoint.hpp: checkpoint_rows).
+  std::map<std::string, std::vector<GlobalId>> checkpoint_rows() const;
   /// Restores a checkpoint written by checkpoint() on any rank count, then imports the ghosts' positions and
   /// directors. InputError if the checkpoint does not belong to this mesh. Collective.
   void restore(const io::CheckpointData& data);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <csignal>
 #include <iostream>
+#include <optional>
+#include <sys/resource.h>
 #include <sstream>
 
 #include "shellfrac/core/error.hpp"
@@ -132,14 +134,31 @@ double estimated_result_bytes(const Deck& deck, GlobalId elements, long steps, d
   return fixed + frames * per_frame + rows * columns * 16;
 }
 
-/// The message of a blow-up, after writing the last good state as a checkpoint.
+/// A checkpoint on disk: its file, step and time.
+struct CheckpointOnDisk {
+  std::string file;
+  long step = -1;
+  double time = 0;
+};
+
+/// The message of a blow-up that names the last good state on disk: `last_good` if the run kept a copy in memory
+/// (written now as a checkpoint), else the last checkpoint written or started from (`on_disk`; none if the run
+/// blew up before its first checkpoint).
 std::string stop_at_blow_up(const NumericalError& e, CheckpointSeries& checkpoints, const RunOutputs& out,
-                            const io::CheckpointData& last_good) {
-  const std::string file = checkpoints.write(out.checkpoint(last_good));
+                            const std::optional<io::CheckpointData>& last_good, const CheckpointOnDisk& on_disk) {
+  CheckpointOnDisk good = on_disk;
+  if (last_good) {
+    good.file = checkpoints.write(out.checkpoint(*last_good));
+    good.step = long(last_good->scalars.at("step")), good.time = last_good->scalars.at("time");
+  }
   std::ostringstream os;
-  os << e.what() << ". The last good state (step " << long(last_good.scalars.at("step")) << ", time "
-     << last_good.scalars.at("time") << ") is in " << file
-     << (checkpoints.is_restart_file(file) ? " (the checkpoint this run started from)" : "")
+  os << e.what() << ". ";
+  if (good.file.empty()) {
+    os << "No checkpoint was written before the blow-up; rerun with a smaller Time Step or Safety Factor";
+    return os.str();
+  }
+  os << "The last good state (step " << good.step << ", time " << good.time << ") is in " << good.file
+     << (checkpoints.is_restart_file(good.file) ? " (the checkpoint this run started from)" : "")
      << "; restart from it (--restart) with a smaller Time Step or Safety Factor";
   return os.str();
 }
@@ -167,7 +186,7 @@ Simulation::~Simulation() = default;
 // The checkpoint is read and checked against this deck and mesh before any output is written.
 void Simulation::restart_from_checkpoint() {
   const std::string& file = deck_.checkpoint.restart_from;
-  const auto data = io::read_checkpoint(file, comm_);
+  const auto data = io::read_checkpoint(file, comm_, model_.dynamics->checkpoint_rows());
   const auto e0 = data.scalars.find("e0");
   SHELLFRAC_INPUT_REQUIRE(e0 != data.scalars.end(), file << ": not a checkpoint of a shellfrac run (no 'e0')");
   fingerprint_.check(data, file, allow_physics_change_);
@@ -250,6 +269,18 @@ void Simulation::check_time_step() {
   model_.warnings.push_back(os.str());
 }
 
+// Peak resident memory of each rank so far (getrusage; kB on Linux): the largest, its rank, and the sum.
+void Simulation::record_peak_memory() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const double mine = 1024.0 * double(usage.ru_maxrss);
+  const std::vector<double> all = parallel::all_gather(std::vector<double>{mine}, comm_);
+  const auto largest = std::max_element(all.begin(), all.end());
+  summary_.peak_memory_max = *largest, summary_.peak_memory_rank = int(largest - all.begin());
+  summary_.peak_memory_sum = 0;
+  for (const double m : all) summary_.peak_memory_sum += m;
+}
+
 std::string Simulation::exodus_path() const { return ResultPaths(deck_).exodus; }
 std::string Simulation::history_path() const { return ResultPaths(deck_).history; }
 std::string Simulation::fragments_path() const { return ResultPaths(deck_).fragments; }
@@ -273,25 +304,30 @@ RunSummary Simulation::run() {
   const auto start = std::chrono::steady_clock::now();
   bool frame_written = true, history_written = true;
   CheckpointSeries checkpoints(deck_.checkpoint, deck_.checkpoint.restart_from, fingerprint_, comm_);
+  CheckpointOnDisk on_disk;
+  if (restarted) on_disk = {deck_.checkpoint.restart_from, dyn.step_count(), dyn.time()};
   const auto write_checkpoint = [&] {
     out.flush_crack_log();  // complete through the checkpoint's step (a restart keeps those rows)
-    checkpoints.write(out.checkpoint(dyn.checkpoint()));
+    on_disk = {checkpoints.write(out.checkpoint(dyn.checkpoint())), dyn.step_count(), dyn.time()};
   };
   ProgressReport progress(parallel::rank(comm_) == 0 ? &std::cout : nullptr, progress_interval_, dyn.step_count(),
                           dyn.time(), tp.end_time, dyn.time_step(), dyn.fracture());
   const long planned = std::lround(std::ceil((tp.end_time - dyn.time()) / dyn.time_step() - 0.5));
   progress.plan(estimated_result_bytes(deck_, summary_.elements, planned, dyn.time()));
   StepEvents events(deck_.checkpoint, progress, comm_);
-  // The last good state: a copy of the state every 50 steps, written as the checkpoint if the run blows up.
-  io::CheckpointData last_good = dyn.checkpoint();
+  // The last good state if the run blows up: with a checkpoint schedule, the last checkpoint; without one, a copy
+  // of the state kept in memory every 50 steps (as large as the state: docs/performance.md), written then.
+  const bool checkpointing = deck_.checkpoint.step_interval > 0 || deck_.checkpoint.wall_minutes > 0;
+  std::optional<io::CheckpointData> last_good;
+  if (!checkpointing) last_good = dyn.checkpoint();
   // Stop when the next step would overshoot the end time by more than half a step.
   while (dyn.time() + 0.5 * dyn.time_step() < tp.end_time) {
     try {
       dyn.step();
     } catch (const NumericalError& e) {
-      throw NumericalError(stop_at_blow_up(e, checkpoints, out, last_good));
+      throw NumericalError(stop_at_blow_up(e, checkpoints, out, last_good, on_disk));
     }
-    if (dyn.step_count() % 50 == 0) last_good = dyn.checkpoint();
+    if (last_good && dyn.step_count() % 50 == 0) last_good.reset(), last_good = dyn.checkpoint();  // one copy at a time
     history_written = dyn.step_count() % tp.history_interval == 0;
     if (history_written) out.write_history();
     frame_written = frames.due(dyn.time(), dyn.time_step());
@@ -309,8 +345,8 @@ RunSummary Simulation::run() {
   summary_.relaxed = dyn.relaxed(), summary_.residual = dyn.relaxation_residual();
   if (!history_written) out.write_history();
   if (!frame_written) out.write_frame();
-  const bool checkpointing = deck_.checkpoint.step_interval > 0 || deck_.checkpoint.wall_minutes > 0;
   if (checkpointing && !summary_.stopped_by_signal) write_checkpoint();  // to continue later
+  record_peak_memory();
   summary_.steps = dyn.step_count() - std::max(summary_.restart_step, 0L);
   summary_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const int np = parallel::size(comm_);

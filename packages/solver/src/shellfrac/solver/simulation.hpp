@@ -34,6 +34,9 @@ struct RunSummary {
   bool static_relaxation = false;  ///< the deck asked for the static state (Static Relaxation)
   bool relaxed = false;            ///< ... and the run reached it before End Time
   double residual = 0;             ///< the last relative residual of the static relaxation
+  double peak_memory_max = 0;      ///< the largest peak resident memory of a rank [bytes] (at the end of run())
+  int peak_memory_rank = 0;        ///< ... and that rank
+  double peak_memory_sum = 0;      ///< the peak resident memories of all ranks added [bytes]
 };
 
 class SignalGuard;
@@ -75,6 +78,7 @@ class Simulation {
   void resolve_probes();
   void summarize();
   void check_time_step();
+  void record_peak_memory();
   std::string element_description(GlobalId element, int block) const;
 
   std::unique_ptr<SignalGuard> signals_;  ///< first: the handlers cover the set-up

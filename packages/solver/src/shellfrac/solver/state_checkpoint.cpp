@@ -79,6 +79,18 @@ io::CheckpointData state_checkpoint(const ShellState& s, const decomposition::Di
   return d;
 }
 
+std::map<std::string, std::vector<GlobalId>> checkpoint_rows(const decomposition::DistributedMesh& dm, bool plastic) {
+  std::map<std::string, std::vector<GlobalId>> rows;
+  auto& el = rows["elements"];
+  for (LocalId le = 0; le < dm.num_owned(); ++le) el.push_back(dm.element_gid(le));
+  if (plastic) rows["plastic"] = el;
+  auto& it = rows["interfaces"];
+  for (const auto& f : dm.interfaces()) it.push_back(f.gid);
+  std::sort(it.begin(), it.end());
+  it.erase(std::unique(it.begin(), it.end()), it.end());
+  return rows;
+}
+
 void restore_state(const io::CheckpointData& d, const std::string& file, const decomposition::DistributedMesh& dm,
                    bool plastic, ShellState& s) {
   const auto scalar = [&](const char* name) {

@@ -1,0 +1,115 @@
+// Checkpoint files (io/checkpoint.hpp), on 1, 2 and 3 ranks. References are exact: every value written is a
+// function of its id, so a row read back must carry exactly those values.
+//  * WritesSortedRowsOnceAndReadsThemBack: each rank writes an interleaved share of the ids (rank r the ids
+//    r, r + np, ...; id 0 also from every rank, as an interface two ranks hold); the file holds every id once,
+//    sorted; read whole on every rank, the table equals the generator bitwise.
+//  * EachRankReceivesOnlyTheRowsItAsksFor: read with a per-rank list of ids (some absent from the file), a rank
+//    gets exactly the rows of the listed ids the file has, sorted, and nothing else: no rank but the reader
+//    holds the whole table (docs/parallel.md).
+//  * TheChecksumCoversEveryTable: a value changed in the file (through HDF5, so the chunk checksums stay
+//    valid) is refused by the file checksum.
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <mpi.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "shellfrac/core/error.hpp"
+#include "shellfrac/core/parallel.hpp"
+#include "shellfrac/io/checkpoint.hpp"
+
+using namespace shellfrac;
+
+namespace {
+
+constexpr int width = 5;
+constexpr GlobalId num_ids = 10000;  // more than two HDF5 chunks of 4096 rows
+
+double value(GlobalId id, int c) { return std::sin(double(id) * 0.37 + c) * 1e3 + double(id); }
+
+std::string file_name(const char* stem) {
+  const std::string dir = "checkpoint_test_np" + std::to_string(parallel::size());
+  if (parallel::rank() == 0) std::filesystem::create_directories(dir);
+  MPI_Barrier(MPI_COMM_WORLD);
+  return dir + "/" + stem + ".h5";
+}
+
+/// This rank's share: ids r, r + np, ... in decreasing order (the writer sorts), plus id 0 from every rank.
+io::CheckpointData share() {
+  const int r = parallel::rank(), np = parallel::size();
+  io::CheckpointData d;
+  d.scalars["time"] = 1.25, d.strings["deck"] = "run.xml";
+  auto& t = d.tables["elements"];
+  t.width = width;
+  std::vector<GlobalId> ids;
+  for (GlobalId id = r; id < num_ids; id += np) ids.push_back(id);
+  if (r != 0) ids.push_back(0);
+  for (auto it = ids.rbegin(); it != ids.rend(); ++it) {
+    t.ids.push_back(*it);
+    for (int c = 0; c < width; ++c) t.values.push_back(value(*it, c));
+  }
+  d.tables["empty"].width = 3;
+  return d;
+}
+
+void expect_rows(const io::CheckpointTable& t, const std::vector<GlobalId>& ids) {
+  ASSERT_EQ(t.width, width);
+  ASSERT_EQ(t.ids, ids);
+  ASSERT_EQ(t.values.size(), ids.size() * width);
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    for (int c = 0; c < width; ++c) ASSERT_EQ(t.values[i * width + c], value(ids[i], c)) << "id " << ids[i];
+}
+
+TEST(Checkpoint, WritesSortedRowsOnceAndReadsThemBack) {
+  const std::string path = file_name("whole");
+  io::write_checkpoint(path, share(), MPI_COMM_WORLD);
+  const auto d = io::read_checkpoint(path, MPI_COMM_WORLD);
+  EXPECT_EQ(d.scalars.at("time"), 1.25);
+  EXPECT_EQ(d.strings.at("deck"), "run.xml");
+  std::vector<GlobalId> all(num_ids);
+  for (GlobalId id = 0; id < num_ids; ++id) all[std::size_t(id)] = id;
+  expect_rows(d.tables.at("elements"), all);
+  EXPECT_EQ(d.tables.at("empty").width, 3);
+  EXPECT_TRUE(d.tables.at("empty").ids.empty());
+}
+
+TEST(Checkpoint, EachRankReceivesOnlyTheRowsItAsksFor) {
+  const std::string path = file_name("rows");
+  io::write_checkpoint(path, share(), MPI_COMM_WORLD);
+  const int r = parallel::rank();
+  // Rank r asks for ids 7r .. 7r + 20 in decreasing order and for two ids the file does not have.
+  std::vector<GlobalId> ask{num_ids + 5, -3};
+  for (GlobalId id = 7 * r + 20; id >= 7 * r; --id) ask.push_back(id);
+  const auto d = io::read_checkpoint(path, MPI_COMM_WORLD, {{"elements", ask}});
+  std::vector<GlobalId> expected;
+  for (GlobalId id = 7 * r; id <= 7 * r + 20; ++id) expected.push_back(id);
+  expect_rows(d.tables.at("elements"), expected);
+  EXPECT_EQ(d.tables.at("empty").width, 3);  // not asked for: whole (empty)
+}
+
+TEST(Checkpoint, TheChecksumCoversEveryTable) {
+  const std::string path = file_name("changed");
+  io::write_checkpoint(path, share(), MPI_COMM_WORLD);
+  if (parallel::rank() == 0) {
+    const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    const hid_t ds = H5Dopen2(file, "/tables/elements/values", H5P_DEFAULT);
+    ASSERT_GE(ds, 0);
+    std::vector<double> v(num_ids * width);
+    ASSERT_GE(H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), 0);
+    v[5000 * width + 2] += 1.0;  // a row of the second chunk
+    ASSERT_GE(H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), 0);
+    H5Dclose(ds), H5Fclose(file);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  try {
+    io::read_checkpoint(path, MPI_COMM_WORLD);
+    ADD_FAILURE() << "a changed value was read without complaint";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("do not match its checksum"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
