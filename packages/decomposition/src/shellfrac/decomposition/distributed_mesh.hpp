@@ -85,6 +85,9 @@ class DistributedMesh {
   /// and its local edge.
   LocalId neighbor(LocalId le, int k) const { return neighbor_[le * 3 + k]; }
   int neighbor_edge(LocalId le, int k) const { return neighbor_edge_[le * 3 + k]; }
+  /// The same for every overlap element at once: entry le * 3 + k.
+  const std::vector<LocalId>& neighbors() const { return neighbor_; }
+  const std::vector<int>& neighbor_edges() const { return neighbor_edge_; }
   /// Local overlap id of a global element id, -1 if not in the overlap.
   LocalId local_id(GlobalId gid) const;
 

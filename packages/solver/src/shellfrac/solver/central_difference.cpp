@@ -1,9 +1,10 @@
 #include "shellfrac/solver/central_difference.hpp"
 
-#include <Kokkos_Core.hpp>
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/exact_sum.hpp"
@@ -13,19 +14,153 @@
 #include "shellfrac/solver/constraints.hpp"
 #include "shellfrac/solver/force_assembly.hpp"
 #include "shellfrac/solver/fracture.hpp"
+#include "shellfrac/solver/kernel_views.hpp"
 #include "shellfrac/solver/loads.hpp"
 #include "shellfrac/solver/shell_model.hpp"
 
 namespace shellfrac::solver {
 
 namespace {
-/// for_each(n, body): body(i) for i in [0, n) on the host execution space (threads with Kokkos OpenMP). The bodies
-/// below write only the rows of their own node or element, so the result does not depend on the thread count.
-template <class Body>
-void for_each(LocalId n, const char* name, const Body& body) {
-  Kokkos::parallel_for(name, Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, n),
-                       [&](const LocalId i) { body(i); });
+
+using Motion = Constraints::Motion;
+
+/// The constraints of the owned nodes as views of Constraints' arrays, with the velocity programs of the
+/// conditions evaluated at one time: program(bc * 3 + c) (a displacement, velocity or acceleration).
+struct ConstraintViews {
+  KernelView<const Motion> motion;
+  KernelView<const unsigned char> components;
+  KernelView<const int> prescribing, plane_offset, director_holder, director_offset;
+  KernelView<const Plane> planes;
+  KernelView<const DirectorConstraint> director_constraints;
+  KernelView<const double> program;
+  ConstraintViews(const Constraints& c, const std::vector<double>& programs)
+      : motion(kernel_view(c.motions())),
+        components(kernel_view(c.prescribed_components())),
+        prescribing(kernel_view(c.prescribings())),
+        plane_offset(kernel_view(c.position_planes().offsets())),
+        director_holder(kernel_view(c.director_holders())),
+        director_offset(kernel_view(c.director_constraints().offsets())),
+        planes(kernel_view(c.position_planes().planes())),
+        director_constraints(kernel_view(c.director_constraints().constraints())),
+        program(kernel_view(programs)) {}
+  /// Whether component c of position node i follows its velocity program.
+  KOKKOS_INLINE_FUNCTION bool prescribed(LocalId i, int c) const { return (components(i) >> c) & 1; }
+  /// Component c of the program of the condition that prescribes node i.
+  KOKKOS_INLINE_FUNCTION double program_of(LocalId i, int c) const { return program(prescribing(i) * 3 + c); }
+  KOKKOS_INLINE_FUNCTION void remove_plane_normals(LocalId i, double w[3]) const {
+    solver::remove_plane_normals(planes.data() + plane_offset(i), planes.data() + plane_offset(i + 1), w);
+  }
+  KOKKOS_INLINE_FUNCTION bool director_held(LocalId j) const { return director_holder(j) >= 0; }
+  KOKKOS_INLINE_FUNCTION void remove_forbidden(LocalId j, const double L[3][3], const double t[3], double w[2]) const {
+    if (director_offset(j) == director_offset(j + 1)) return;
+    remove_forbidden_director_components(director_constraints.data() + director_offset(j),
+                                         director_constraints.data() + director_offset(j + 1), L, t, w);
+  }
+};
+
+/// Accelerations of owned element le at time t from the current forces (paper eq. 49): a = (f_ext - f - alpha m v)/m
+/// on free components, the program's acceleration on prescribed ones, 0 on held nodes, without the components
+/// normal to symmetry planes; T-ddot = -(Lambda-bar^T g + alpha I T-dot)/I on free directors. `rate` is the
+/// director rate in the damping force (the predicted one in a step). Also the reactions R = m a - f_ext + f on held
+/// and prescribed components, and the damping dissipated over dt.
+struct Accelerate {
+  ConstraintViews con;  // programs: the accelerations at t
+  KernelView<const double> v, f, fe, m, g, ge, rotation, director, inertia, rate;
+  KernelView<double> a, reaction, director_acceleration, damping;
+  double alpha, dt;
+  bool director_loads;
+
+  KOKKOS_INLINE_FUNCTION void operator()(LocalId le) const {
+    double diss = 0;
+    for (int A = 0; A < position_nodes; ++A) {
+      const LocalId i = le * position_nodes + A;
+      double* acc = &a(i * 3);
+      double* R = &reaction(i * 3);
+      const double *vi = &v(i * 3), *fi = &f(i * 3), *fei = &fe(i * 3);
+      const double mi = m(i);
+      const Motion motion = con.motion(i);
+      if (motion == Motion::held) {
+        for (int c = 0; c < 3; ++c) acc[c] = 0, R[c] = mi * acc[c] - fei[c] + fi[c];
+        continue;
+      }
+      if (motion == Motion::prescribed) {
+        for (int c = 0; c < 3; ++c) {
+          if (con.prescribed(i, c)) {
+            acc[c] = con.program_of(i, c), R[c] = mi * acc[c] - fei[c] + fi[c];
+          } else {
+            diss += dt * alpha * mi * vi[c] * vi[c];
+            acc[c] = (fei[c] - fi[c] - alpha * mi * vi[c]) / mi, R[c] = 0.0;
+          }
+        }
+        continue;
+      }
+      for (int c = 0; c < 3; ++c) {
+        diss += dt * alpha * mi * vi[c] * vi[c];
+        acc[c] = (fei[c] - fi[c] - alpha * mi * vi[c]) / mi, R[c] = 0.0;
+      }
+      if (motion == Motion::on_planes) con.remove_plane_normals(i, acc);
+    }
+    for (int b = 0; b < director_nodes; ++b) {
+      const LocalId j = le * director_nodes + b;
+      double L[3][3], fT[2];
+      load_matrix(&rotation(j * 9), L);
+      if (director_loads) {  // f_T = Lambda-bar^T (g - g_ext)
+        double gj[3];
+        for (int c = 0; c < 3; ++c) gj[c] = g(j * 3 + c) - ge(j * 3 + c);
+        disc::lambda_bar_transpose_times(L, gj, fT);
+      } else {
+        disc::lambda_bar_transpose_times(L, &g(j * 3), fT);
+      }
+      const double I = inertia(j);
+      const double* Tp = &rate(j * 2);
+      for (int c = 0; c < 2; ++c) {
+        diss += dt * alpha * I * Tp[c] * Tp[c];
+        fT[c] += alpha * I * Tp[c];
+      }
+      con.remove_forbidden(j, L, &director(j * 3), fT);
+      const bool held = con.director_held(j);
+      for (int c = 0; c < 2; ++c) director_acceleration(j * 2 + c) = held ? 0.0 : -fT[c] / I;
+    }
+    damping(le) += diss;
+  }
+};
+
+/// One velocity program of every condition at time t: out[bc * 3 + c].
+void evaluate_programs(const Constraints& constraints, double t, Vec3 (Constraints::*program)(int, double) const,
+                       std::vector<double>& out) {
+  out.assign(3 * constraints.size(), 0.0);
+  for (std::size_t bc = 0; bc < constraints.size(); ++bc) {
+    const Vec3 p = (constraints.*program)(int(bc), t);
+    for (int c = 0; c < 3; ++c) out[bc * 3 + c] = p[c];
+  }
 }
+
+/// The Accelerate kernel of state s at time t (`programs`: filled with the programs' accelerations at t), with
+/// `director_rate` in the damping force.
+Accelerate accelerations(const ShellModel& model, const Constraints& constraints, bool director_loads, double alpha,
+                         ShellState& s, double t, double dt, const RateRows& director_rate,
+                         std::vector<double>& programs) {
+  evaluate_programs(constraints, t, &Constraints::prescribed_acceleration, programs);
+  return Accelerate{ConstraintViews(constraints, programs),
+                    kernel_view(std::as_const(s.v)),
+                    kernel_view(std::as_const(s.internal_force)),
+                    kernel_view(std::as_const(s.external_force)),
+                    kernel_view(model.mass),
+                    kernel_view(std::as_const(s.director_force)),
+                    kernel_view(std::as_const(s.external_director_force)),
+                    kernel_view(std::as_const(s.rotation)),
+                    kernel_view(std::as_const(s.t)),
+                    kernel_view(model.inertia),
+                    kernel_view(director_rate),
+                    kernel_view(s.a),
+                    kernel_view(s.reaction),
+                    kernel_view(s.director_acceleration),
+                    kernel_view(s.damping_dissipation),
+                    alpha,
+                    dt,
+                    director_loads};
+}
+
 }  // namespace
 
 CentralDifference::CentralDifference(ShellModel& model, Constraints& constraints, const Loads& loads,
@@ -48,7 +183,9 @@ void CentralDifference::start(ShellState& s) {
   assembly_.compute_forces(s, fracture_.cohesive_params());
   commit_plasticity(s);
   loads_.external_forces(s.time, s, s.external_force, s.external_director_force);
-  for (LocalId le = 0; le < model_.owned; ++le) accelerate(s, le, s.time, 0.0, s.director_rate);
+  const Accelerate accelerate = accelerations(model_, constraints_, loads_.has_director_loads(), alpha_, s, s.time,
+                                              0.0, s.director_rate, programs_a_);
+  Kokkos::parallel_for("shellfrac::StartAccelerations", KernelRange(0, model_.owned), accelerate);
 }
 
 void CentralDifference::step(ShellState& s, double dt) {
@@ -162,52 +299,55 @@ void CentralDifference::remember_step_start(const ShellState& s) {
 // stay at X, prescribed components follow the exact integral of their velocity program, and no increment crosses
 // a symmetry plane. Directors: Delta T = dt T-dot + dt^2/2 T-ddot, then the exponential map.
 void CentralDifference::predict(ShellState& s, double dt, double t1) {
-  using Motion = Constraints::Motion;
-  for_each(model_.owned * position_nodes, "shellfrac::PredictPositions", [&](const LocalId i) {
-    double* x = s.x.point(i);
-    double* v = s.v.point(i);
-    const double* a = s.a.point(i);
-    const double* X = model_.X.point(i);
-    const Motion motion = constraints_.motion(i);
+  evaluate_programs(constraints_, t1, &Constraints::prescribed_displacement, programs_u_);
+  const ConstraintViews con(constraints_, programs_u_);
+  const KernelView<double> x = kernel_view(s.x), v = kernel_view(s.v);
+  const KernelView<const double> a = kernel_view(std::as_const(s.a)), X = kernel_view(model_.X);
+  Kokkos::parallel_for("shellfrac::PredictPositions", KernelRange(0, model_.owned * position_nodes), [=](const LocalId i) {
+    double* xi = &x(i * 3);
+    double* vi = &v(i * 3);
+    const double* ai = &a(i * 3);
+    const double* Xi = &X(i * 3);
+    const Motion motion = con.motion(i);
     if (motion == Motion::held) {
-      for (int c = 0; c < 3; ++c) x[c] = X[c], v[c] = 0;
+      for (int c = 0; c < 3; ++c) xi[c] = Xi[c], vi[c] = 0;
       return;
     }
     double dx[3];
-    for (int c = 0; c < 3; ++c) dx[c] = dt * v[c] + 0.5 * dt * dt * a[c];
+    for (int c = 0; c < 3; ++c) dx[c] = dt * vi[c] + 0.5 * dt * dt * ai[c];
     if (motion == Motion::prescribed) {  // the exact integral of the program: no drift
-      const Vec3 u = constraints_.prescribed_displacement(constraints_.prescribing(i), t1);
       for (int c = 0; c < 3; ++c) {
-        const bool p = constraints_.prescribed(i, c);
-        x[c] = p ? X[c] + u[c] : x[c] + dx[c];
-        if (!p) v[c] += 0.5 * dt * a[c];
+        const bool p = con.prescribed(i, c);
+        xi[c] = p ? Xi[c] + con.program_of(i, c) : xi[c] + dx[c];
+        if (!p) vi[c] += 0.5 * dt * ai[c];
       }
       return;
     }
-    for (int c = 0; c < 3; ++c) v[c] += 0.5 * dt * a[c];
+    for (int c = 0; c < 3; ++c) vi[c] += 0.5 * dt * ai[c];
     if (motion == Motion::on_planes) {
-      constraints_.position_planes().remove_normal_components(i, dx);
-      constraints_.position_planes().remove_normal_components(i, v);
+      con.remove_plane_normals(i, dx);
+      con.remove_plane_normals(i, vi);
     }
-    for (int c = 0; c < 3; ++c) x[c] += dx[c];
+    for (int c = 0; c < 3; ++c) xi[c] += dx[c];
   });
-  const auto& director_constraints = constraints_.director_constraints();
-  for_each(model_.owned * director_nodes, "shellfrac::PredictDirectors", [&](const LocalId j) {
+  const KernelView<double> t = kernel_view(s.t), rotation = kernel_view(s.rotation);
+  const KernelView<const double> Td = kernel_view(std::as_const(s.director_rate));
+  const KernelView<const double> Tdd = kernel_view(std::as_const(s.director_acceleration));
+  const KernelView<double> Tp = kernel_view(director_rate_predicted_);
+  Kokkos::parallel_for("shellfrac::PredictDirectors", KernelRange(0, model_.owned * director_nodes), [=](const LocalId j) {
     double L[3][3], dT[2];
-    load_matrix(s.rotation.point(j), L);
-    const double* Td = s.director_rate.point(j);
-    const double* Tdd = s.director_acceleration.point(j);
-    double* Tp = director_rate_predicted_.point(j);
-    const bool held = constraints_.director_held(j);
+    load_matrix(&rotation(j * 9), L);
+    const bool held = con.director_held(j);
+    double* Tpj = &Tp(j * 2);
     for (int c = 0; c < 2; ++c) {
-      dT[c] = held ? 0.0 : dt * Td[c] + 0.5 * dt * dt * Tdd[c];  // paper eq. 47
-      Tp[c] = held ? 0.0 : Td[c] + 0.5 * dt * Tdd[c];            // paper eq. 48, gamma = 1/2
+      dT[c] = held ? 0.0 : dt * Td(j * 2 + c) + 0.5 * dt * dt * Tdd(j * 2 + c);  // paper eq. 47
+      Tpj[c] = held ? 0.0 : Td(j * 2 + c) + 0.5 * dt * Tdd(j * 2 + c);         // paper eq. 48, gamma = 1/2
     }
-    director_constraints.remove_forbidden_components(j, L, s.t.point(j), dT);
-    director_constraints.remove_forbidden_components(j, L, s.t.point(j), Tp);
-    double* t = s.t.point(j);
-    disc::update_director(t, L, dT, t, L);  // Algorithm 1
-    store_matrix(L, s.rotation.point(j));
+    double* tj = &t(j * 3);
+    con.remove_forbidden(j, L, tj, dT);
+    con.remove_forbidden(j, L, tj, Tpj);
+    disc::update_director(tj, L, dT, tj, L);  // Algorithm 1
+    store_matrix(L, &rotation(j * 9));
   });
 }
 
@@ -230,116 +370,54 @@ void CentralDifference::commit_plasticity(ShellState& s) const {
   s.plastic.swap(assembly_.plastic_trial());
 }
 
-// The corrector, element by element (one pass over the element's rows): accelerations and reactions at t1,
-// velocities at t1, and the work of the step.
+// The corrector, element by element (one pass over the element's rows): accelerations and reactions at t1
+// (paper eq. 49, with the damping force alpha m v_pre), velocities at t1 (paper eq. 50, gamma = 1/2:
+// v^{n+1} = v_pre + dt/2 a^{n+1} on free components, the program's velocity on prescribed ones;
+// T-dot^{n+1} = T-dot_pre + dt/2 T-ddot^{n+1}), and the work of the loads and of the reactions over the step by the
+// trapezoidal rule (docs/theory.md §9.7).
 void CentralDifference::correct(ShellState& s, double dt, double t1) {
-  for_each(model_.owned, "shellfrac::Correct", [&](const LocalId le) {
-    accelerate(s, le, t1, dt, director_rate_predicted_);  // paper eq. 49, with the damping force alpha m v_pre
-    correct_velocities(s, le, dt, t1);                     // paper eq. 50
-    book_work(s, le);
-  });
-}
-
-// Accelerations of owned element le at time t from the current forces (paper eq. 49): a = (f_ext - f - alpha m v)/m
-// on free components, the program's acceleration on prescribed ones, 0 on held nodes, without the components
-// normal to symmetry planes; T-ddot = -(Lambda-bar^T g + alpha I T-dot)/I on free directors. `director_rate` is
-// the rate in the damping force (the predicted one in a step). Also the reactions R = m a - f_ext + f on held and
-// prescribed components, and the damping dissipated over dt.
-void CentralDifference::accelerate(ShellState& s, LocalId le, double t, double dt, const RateRows& director_rate) {
-  using Motion = Constraints::Motion;
-  const double alpha = alpha_;
-  double diss = 0;
-  for (int A = 0; A < position_nodes; ++A) {
-    const LocalId i = le * position_nodes + A;
-    double* acc = s.a.point(i);
-    double* R = s.reaction.point(i);
-    const double *v = s.v.point(i), *f = s.internal_force.point(i), *fe = s.external_force.point(i);
-    const double m = *model_.mass.point(i);
-    const Motion motion = constraints_.motion(i);
-    if (motion == Motion::held) {
-      for (int c = 0; c < 3; ++c) acc[c] = 0, R[c] = m * acc[c] - fe[c] + f[c];
-      continue;
-    }
-    if (motion == Motion::prescribed) {
-      const Vec3 pa = constraints_.prescribed_acceleration(constraints_.prescribing(i), t);
-      for (int c = 0; c < 3; ++c) {
-        if (constraints_.prescribed(i, c)) {
-          acc[c] = pa[c], R[c] = m * acc[c] - fe[c] + f[c];
-        } else {
-          diss += dt * alpha * m * v[c] * v[c];
-          acc[c] = (fe[c] - f[c] - alpha * m * v[c]) / m, R[c] = 0.0;
-        }
+  const Accelerate accelerate = accelerations(model_, constraints_, loads_.has_director_loads(), alpha_, s, t1, dt,
+                                              director_rate_predicted_, programs_a_);
+  evaluate_programs(constraints_, t1, &Constraints::prescribed_velocity, programs_v_);
+  const ConstraintViews con(constraints_, programs_v_);
+  const KernelView<double> v = kernel_view(s.v), rate = kernel_view(s.director_rate);
+  const KernelView<const double> a = kernel_view(std::as_const(s.a));
+  const KernelView<const double> Tdd = kernel_view(std::as_const(s.director_acceleration));
+  const KernelView<const double> Tp = kernel_view(std::as_const(director_rate_predicted_));
+  const KernelView<const double> x = kernel_view(std::as_const(s.x)), x0 = kernel_view(std::as_const(x_start_));
+  const KernelView<const double> fe = kernel_view(std::as_const(s.external_force)), fe0 = kernel_view(std::as_const(fext_start_));
+  const KernelView<const double> R = kernel_view(std::as_const(s.reaction)), R0 = kernel_view(std::as_const(reaction_start_));
+  const KernelView<const double> t = kernel_view(std::as_const(s.t)), t0 = kernel_view(std::as_const(t_start_));
+  const KernelView<const double> ge = kernel_view(std::as_const(s.external_director_force));
+  const KernelView<const double> ge0 = kernel_view(std::as_const(gext_start_));
+  const KernelView<double> external_work = kernel_view(s.external_work), reaction_work = kernel_view(s.reaction_work);
+  const bool director_loads = loads_.has_director_loads();
+  Kokkos::parallel_for("shellfrac::Correct", KernelRange(0, model_.owned), [=](const LocalId le) {
+    accelerate(le);
+    for (LocalId i = le * position_nodes; i < (le + 1) * position_nodes; ++i) {
+      double* vi = &v(i * 3);
+      const double* ai = &a(i * 3);
+      const Motion motion = con.motion(i);
+      if (motion == Motion::held) continue;
+      if (motion == Motion::prescribed) {
+        for (int c = 0; c < 3; ++c) vi[c] = con.prescribed(i, c) ? con.program_of(i, c) : vi[c] + 0.5 * dt * ai[c];
+        continue;
       }
-      continue;
+      for (int c = 0; c < 3; ++c) vi[c] += 0.5 * dt * ai[c];
     }
-    for (int c = 0; c < 3; ++c) {
-      diss += dt * alpha * m * v[c] * v[c];
-      acc[c] = (fe[c] - f[c] - alpha * m * v[c]) / m, R[c] = 0.0;
+    for (LocalId j = le * director_nodes; j < (le + 1) * director_nodes; ++j)
+      for (int c = 0; c < 2; ++c) rate(j * 2 + c) = Tp(j * 2 + c) + 0.5 * dt * Tdd(j * 2 + c);
+    double wext = 0, wreact = 0;
+    for (LocalId k = le * position_values; k < (le + 1) * position_values; ++k) {
+      const double dx = x(k) - x0(k);
+      wext += 0.5 * (fe0(k) + fe(k)) * dx;
+      wreact += 0.5 * (R0(k) + R(k)) * dx;
     }
-    if (motion == Motion::on_planes) constraints_.position_planes().remove_normal_components(i, acc);
-  }
-  for (int b = 0; b < director_nodes; ++b) {
-    const LocalId j = le * director_nodes + b;
-    double L[3][3], fT[2];
-    load_matrix(s.rotation.point(j), L);
-    if (loads_.has_director_loads()) {  // f_T = Lambda-bar^T (g - g_ext)
-      double g[3];
-      for (int c = 0; c < 3; ++c) g[c] = s.director_force.point(j)[c] - s.external_director_force.point(j)[c];
-      disc::lambda_bar_transpose_times(L, g, fT);
-    } else {
-      disc::lambda_bar_transpose_times(L, s.director_force.point(j), fT);
-    }
-    const double I = *model_.inertia.point(j);
-    const double* Tp = director_rate.point(j);
-    for (int c = 0; c < 2; ++c) {
-      diss += dt * alpha * I * Tp[c] * Tp[c];
-      fT[c] += alpha * I * Tp[c];
-    }
-    constraints_.director_constraints().remove_forbidden_components(j, L, s.t.point(j), fT);
-    const bool held = constraints_.director_held(j);
-    for (int c = 0; c < 2; ++c) s.director_acceleration.point(j)[c] = held ? 0.0 : -fT[c] / I;
-  }
-  *s.damping_dissipation.at(le) += diss;
-}
-
-// Velocities of owned element le at t1 (paper eq. 50, gamma = 1/2): v^{n+1} = v_pre + dt/2 a^{n+1} on free
-// components, the program's velocity on prescribed ones; T-dot^{n+1} = T-dot_pre + dt/2 T-ddot^{n+1}.
-void CentralDifference::correct_velocities(ShellState& s, LocalId le, double dt, double t1) const {
-  using Motion = Constraints::Motion;
-  for (LocalId i = le * position_nodes; i < (le + 1) * position_nodes; ++i) {
-    double* v = s.v.point(i);
-    const double* acc = s.a.point(i);
-    const Motion motion = constraints_.motion(i);
-    if (motion == Motion::held) continue;
-    if (motion == Motion::prescribed) {
-      const Vec3 pv = constraints_.prescribed_velocity(constraints_.prescribing(i), t1);
-      for (int c = 0; c < 3; ++c) v[c] = constraints_.prescribed(i, c) ? pv[c] : v[c] + 0.5 * dt * acc[c];
-      continue;
-    }
-    for (int c = 0; c < 3; ++c) v[c] += 0.5 * dt * acc[c];
-  }
-  for (LocalId j = le * director_nodes; j < (le + 1) * director_nodes; ++j)
-    for (int c = 0; c < 2; ++c)
-      s.director_rate.point(j)[c] = director_rate_predicted_.point(j)[c] + 0.5 * dt * s.director_acceleration.point(j)[c];
-}
-
-// Work of the loads and of the reactions on owned element le over the step, by the trapezoidal rule
-// (docs/theory.md §9.7).
-void CentralDifference::book_work(ShellState& s, LocalId le) const {
-  double wext = 0, wreact = 0;
-  const double *x = s.x.at(le), *x0 = x_start_.at(le), *fe = s.external_force.at(le), *fe0 = fext_start_.at(le);
-  const double *R = s.reaction.at(le), *R0 = reaction_start_.at(le);
-  for (int k = 0; k < position_values; ++k) {
-    const double dx = x[k] - x0[k];
-    wext += 0.5 * (fe0[k] + fe[k]) * dx;
-    wreact += 0.5 * (R0[k] + R[k]) * dx;
-  }
-  if (loads_.has_director_loads()) {  // the work of the edge couples on the directors
-    const double *t = s.t.at(le), *t0 = t_start_.at(le), *ge = s.external_director_force.at(le);
-    const double* ge0 = gext_start_.at(le);
-    for (int k = 0; k < director_values; ++k) wext += 0.5 * (ge0[k] + ge[k]) * (t[k] - t0[k]);
-  }
-  *s.external_work.at(le) += wext, *s.reaction_work.at(le) += wreact;
+    if (director_loads)  // the work of the edge couples on the directors
+      for (LocalId k = le * director_values; k < (le + 1) * director_values; ++k)
+        wext += 0.5 * (ge0(k) + ge(k)) * (t(k) - t0(k));
+    external_work(le) += wext, reaction_work(le) += wreact;
+  });
 }
 
 void CentralDifference::check_finite(const ShellState& s) const {

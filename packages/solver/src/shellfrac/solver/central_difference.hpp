@@ -3,6 +3,9 @@
 /// Explicit central differences in time (paper eqs. 47-50 and Algorithm 1; docs/theory.md §7): Newmark with
 /// gamma = 1/2 for positions and for the material director rates, the exponential-map update of the directors,
 /// and the constraints, loads, plasticity commit and fracture checks of each step, as named phases.
+#include <vector>
+
+#include "shellfrac/core/types.hpp"
 #include "shellfrac/solver/phase_times.hpp"
 #include "shellfrac/solver/shell_state.hpp"
 
@@ -42,9 +45,6 @@ class CentralDifference {
   void predict(ShellState& s, double dt, double t1);
   void commit_plasticity(ShellState& s) const;
   void correct(ShellState& s, double dt, double t1);
-  void accelerate(ShellState& s, LocalId le, double t, double dt, const RateRows& director_rate);
-  void correct_velocities(ShellState& s, LocalId le, double dt, double t1) const;
-  void book_work(ShellState& s, LocalId le) const;
   void check_finite(const ShellState& s) const;
   void relax(ShellState& s);
   void reset_free_velocities(ShellState& s) const;
@@ -64,6 +64,7 @@ class CentralDifference {
   PositionRows x_start_, fext_start_, reaction_start_;  // positions, loads and reactions at t_n (work accounts)
   DirectorRows t_start_, gext_start_;                   // directors and director loads at t_n (edge moments)
   RateRows director_rate_predicted_;  // T-dot + dt/2 T-ddot (eq. 48)
+  std::vector<double> programs_u_, programs_v_, programs_a_;  // the conditions' programs at the kernel's time
 };
 
 }  // namespace shellfrac::solver

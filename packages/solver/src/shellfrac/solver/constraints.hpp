@@ -46,6 +46,15 @@ struct Plane {
   int condition;
 };
 
+/// w -= (w . n) n for the normal n of each plane in [first, last), in order.
+inline void remove_plane_normals(const Plane* first, const Plane* last, double w[3]) {
+  for (const Plane* p = first; p != last; ++p) {
+    const double* n = p->normal.data();
+    const double wn = w[0] * n[0] + w[1] * n[1] + w[2] * n[2];
+    for (int c = 0; c < 3; ++c) w[c] -= wn * n[c];
+  }
+}
+
 /// Short lists of planes per node, compressed (most nodes have none), in deck order.
 class PlaneLists {
  public:
@@ -57,13 +66,10 @@ class PlaneLists {
   const Plane* end(LocalId i) const { return planes_.data() + offset_[i + 1]; }
   bool empty(LocalId i) const { return offset_[i] == offset_[i + 1]; }
   /// w -= (w . n) n for each plane normal n of node i, in order.
-  void remove_normal_components(LocalId i, double w[3]) const {
-    for (const Plane* p = begin(i); p != end(i); ++p) {
-      const double* n = p->normal.data();
-      const double wn = w[0] * n[0] + w[1] * n[1] + w[2] * n[2];
-      for (int c = 0; c < 3; ++c) w[c] -= wn * n[c];
-    }
-  }
+  void remove_normal_components(LocalId i, double w[3]) const { remove_plane_normals(begin(i), end(i), w); }
+  /// The lists: node i's planes are planes()[offsets()[i]] .. planes()[offsets()[i + 1] - 1].
+  const std::vector<int>& offsets() const { return offset_; }
+  const std::vector<Plane>& planes() const { return planes_; }
   std::size_t bytes() const { return sizeof(int) * offset_.size() + sizeof(Plane) * planes_.size(); }
 
  private:
@@ -79,39 +85,50 @@ struct DirectorConstraint {
   int condition;
 };
 
+/// Removes from the material components w[2] of a director rate, increment or force (current director t,
+/// rotation L) the directions the constraints [first, last) forbid (docs/theory.md §10.1): d = Lambda-bar^T n for
+/// a kept component t . n, d = Lambda-bar^T (n x t) for no rotation about n. Several constraints are composed by
+/// an orthogonal projection on the intersection (two independent ones hold the director).
+inline void remove_forbidden_director_components(const DirectorConstraint* first, const DirectorConstraint* last,
+                                                 const double L[3][3], const double t[3], double w[2]) {
+  double d[2][2];
+  int nd = 0;
+  for (const DirectorConstraint* k = first; k != last && nd < 2; ++k) {
+    const DirectorConstraint& c = *k;
+    double v[3];
+    if (c.no_rotation_about_axis)
+      disc::cross3(c.axis.data(), t, v);
+    else
+      disc::copy3(c.axis.data(), v);
+    disc::lambda_bar_transpose_times(L, v, d[nd]);
+    if (nd == 1) {  // orthogonalize against the first (2-D Gram-Schmidt)
+      const double d00 = d[0][0] * d[0][0] + d[0][1] * d[0][1];
+      if (d00 > 0) {
+        const double f = (d[1][0] * d[0][0] + d[1][1] * d[0][1]) / d00;
+        d[1][0] -= f * d[0][0], d[1][1] -= f * d[0][1];
+      }
+      if (d[1][0] * d[1][0] + d[1][1] * d[1][1] <= 1e-24 * (d00 > 0 ? d00 : 1.0)) continue;  // dependent
+    }
+    ++nd;
+  }
+  for (int k = 0; k < nd; ++k) disc::project_out(w, d[k]);
+}
+
 /// Short lists of director constraints per node, compressed, in deck order.
 class DirectorConstraintLists {
  public:
   void assign(const std::vector<std::vector<DirectorConstraint>>& lists);
   bool empty(LocalId j) const { return offset_[j] == offset_[j + 1]; }
-  /// Removes from the material components w[2] of a director rate, increment or force of director node j (current
-  /// director t, rotation L) the directions its constraints forbid (docs/theory.md §10.1): d = Lambda-bar^T n for a
-  /// kept component t . n, d = Lambda-bar^T (n x t) for no rotation about n. Several constraints are composed by an
-  /// orthogonal projection on the intersection (two independent ones hold the director).
+  /// Removes from the material components w[2] of a director rate, increment or force of director node j the
+  /// directions its constraints forbid (remove_forbidden_director_components).
   void remove_forbidden_components(LocalId j, const double L[3][3], const double t[3], double w[2]) const {
     if (empty(j)) return;
-    double d[2][2];
-    int nd = 0;
-    for (int k = offset_[j]; k < offset_[j + 1] && nd < 2; ++k) {
-      const DirectorConstraint& c = constraints_[k];
-      double v[3];
-      if (c.no_rotation_about_axis)
-        disc::cross3(c.axis.data(), t, v);
-      else
-        disc::copy3(c.axis.data(), v);
-      disc::lambda_bar_transpose_times(L, v, d[nd]);
-      if (nd == 1) {  // orthogonalize against the first (2-D Gram-Schmidt)
-        const double d00 = d[0][0] * d[0][0] + d[0][1] * d[0][1];
-        if (d00 > 0) {
-          const double f = (d[1][0] * d[0][0] + d[1][1] * d[0][1]) / d00;
-          d[1][0] -= f * d[0][0], d[1][1] -= f * d[0][1];
-        }
-        if (d[1][0] * d[1][0] + d[1][1] * d[1][1] <= 1e-24 * (d00 > 0 ? d00 : 1.0)) continue;  // dependent
-      }
-      ++nd;
-    }
-    for (int k = 0; k < nd; ++k) disc::project_out(w, d[k]);
+    remove_forbidden_director_components(constraints_.data() + offset_[j], constraints_.data() + offset_[j + 1], L,
+                                         t, w);
   }
+  /// The lists: node j's constraints are constraints()[offsets()[j]] .. constraints()[offsets()[j + 1] - 1].
+  const std::vector<int>& offsets() const { return offset_; }
+  const std::vector<DirectorConstraint>& constraints() const { return constraints_; }
 
  private:
   std::vector<int> offset_{0};
@@ -139,6 +156,11 @@ class Constraints {
   // Director node j = le * 3 + b of an owned element.
   bool director_held(LocalId j) const { return director_held_by_[j] >= 0; }
   const DirectorConstraintLists& director_constraints() const { return director_constraints_; }
+  /// The per-node arrays behind the queries above (owned position nodes; owned director nodes), for kernels.
+  const std::vector<Motion>& motions() const { return motion_; }
+  const std::vector<unsigned char>& prescribed_components() const { return prescribed_components_; }
+  const std::vector<int>& prescribings() const { return prescribing_; }
+  const std::vector<int>& director_holders() const { return director_held_by_; }
 
   /// Displacement, velocity and acceleration programs of Prescribed Velocity condition bc at time t.
   Vec3 prescribed_displacement(int bc, double t) const;

@@ -253,7 +253,7 @@ std::vector<std::vector<double>> Fracture::fragment_table(const ShellState& s, c
 
 double Fracture::damage(const ShellState& s, const ShellModel& model, LocalId le) const {
   double damage = 0;
-  for (const auto& [i, side] : model.incident[le]) {
+  for (const auto& [i, side] : model.incident.of(le)) {
     double d = s.mode[i] == separated ? 1.0 : 0.0;
     if (s.mode[i] == cohesive)
       for (int g = 0; g < 3; ++g) d = std::max(d, std::min(1.0, s.delta_max.at(i)[g] / cohesive_[i].delta_f));

@@ -204,7 +204,14 @@ void ShellModel::build_interfaces(const Deck& deck) {
     return director ? deck.discretization.cT * E * h * h * h / 12 : deck.discretization.cx * E * h;
   };
   interface_refs.resize(ifs.size()), interface_beta_x.resize(ifs.size()), interface_beta_t.resize(ifs.size());
-  incident.resize(owned);
+  incident.offset.assign(std::size_t(owned) + 1, 0);
+  for (const auto& fc : ifs) {
+    if (fc.minus < owned) ++incident.offset[std::size_t(fc.minus) + 1];
+    if (fc.plus < owned) ++incident.offset[std::size_t(fc.plus) + 1];
+  }
+  for (LocalId le = 0; le < owned; ++le) incident.offset[std::size_t(le) + 1] += incident.offset[std::size_t(le)];
+  incident.entries.resize(std::size_t(incident.offset.back()));
+  std::vector<int> filled(incident.offset.begin(), incident.offset.end() - 1);
   for (std::size_t i = 0; i < ifs.size(); ++i) {
     const auto& fc = ifs[i];
     double Xe[6][3], Te[3][3];
@@ -216,8 +223,8 @@ void ShellModel::build_interfaces(const Deck& deck) {
     disc::build_dg_interface_ref(r.edge[fc.minus_edge], interface_refs[i]);
     interface_beta_x[i] = 0.5 * (beta(fc.minus, false) + beta(fc.plus, false));
     interface_beta_t[i] = 0.5 * (beta(fc.minus, true) + beta(fc.plus, true));
-    if (fc.minus < owned) incident[fc.minus].push_back({int(i), 0});
-    if (fc.plus < owned) incident[fc.plus].push_back({int(i), 1});
+    if (fc.minus < owned) incident.entries[std::size_t(filled[std::size_t(fc.minus)]++)] = {int(i), 0};
+    if (fc.plus < owned) incident.entries[std::size_t(filled[std::size_t(fc.plus)]++)] = {int(i), 1};
   }
 }
 

@@ -35,6 +35,25 @@ struct BlockSection {
 /// (checked when the model is set up).
 std::vector<BlockSection> block_sections(const Deck& deck, const std::vector<std::string>& block_names);
 
+/// An interface of an element and the element's side of it (0 = minus, 1 = plus).
+struct IncidentInterface {
+  int interface;
+  int side;
+};
+
+/// The interfaces of each owned element, in increasing interface order, stored flat: element le's are
+/// entries[offset[le]] .. entries[offset[le + 1] - 1].
+struct IncidentInterfaces {
+  std::vector<int> offset{0};
+  std::vector<IncidentInterface> entries;
+  struct Range {
+    const IncidentInterface *first, *last;
+    const IncidentInterface* begin() const { return first; }
+    const IncidentInterface* end() const { return last; }
+  };
+  Range of(LocalId le) const { return {entries.data() + offset[le], entries.data() + offset[le + 1]}; }
+};
+
 /// The discrete DG shell on one rank.
 struct ShellModel {
   /// Builds every reference quantity; the stable step is the global minimum (collective).
@@ -58,8 +77,8 @@ struct ShellModel {
   // Interfaces: every local one (dm.interfaces() order).
   std::vector<disc::DgInterfaceRef> interface_refs;  ///< the minus side's reference edge data
   std::vector<double> interface_beta_x, interface_beta_t;  ///< penalty constants (mean of the two sides)
-  /// Per owned element: its interfaces as (local interface, side), side 0 = minus, in increasing interface id.
-  std::vector<std::vector<std::pair<int, int>>> incident;
+  /// Per owned element: its interfaces (local interface, side), in increasing interface id.
+  IncidentInterfaces incident;
 
   /// Kinetic energy of owned element le: 1/2 m |v|^2 over its position nodes plus 1/2 I |T-dot|^2 over its
   /// director nodes (the history's kinetic_energy, docs/theory.md §11).
