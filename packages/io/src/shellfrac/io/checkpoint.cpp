@@ -482,8 +482,10 @@ CheckpointData read_checkpoint(const std::string& path, MPI_Comm comm,
       d.tables[name] = std::move(table);
       continue;
     }
-    // The rows of the ids rank r asks for (those the file has), in the order asked.
-    const auto rows_for = [&](const std::vector<GlobalId>& ids, CheckpointTable& out) {
+    // The rows of the ids a rank asks for (those the file has), sorted by id.
+    const auto rows_for = [&](std::vector<GlobalId> ids, CheckpointTable& out) {
+      std::sort(ids.begin(), ids.end());
+      ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
       out.width = table.width;
       for (const GlobalId id : ids) {
         const double* row = table.row(id);
@@ -495,9 +497,8 @@ CheckpointData read_checkpoint(const std::string& path, MPI_Comm comm,
     CheckpointTable mine;
     if (me == 0) {
       for (int r = 1; r < np; ++r) {
-        const auto ids = receive_vector<std::int64_t>(r, comm);
         CheckpointTable theirs;
-        rows_for(ids, theirs);
+        rows_for(receive_vector<std::int64_t>(r, comm), theirs);
         const std::vector<std::int64_t> width{theirs.width};
         send_vector(width, r, comm), send_vector(theirs.ids, r, comm), send_vector(theirs.values, r, comm);
       }
@@ -506,20 +507,6 @@ CheckpointData read_checkpoint(const std::string& path, MPI_Comm comm,
       send_vector(ask->second, 0, comm);
       mine.width = static_cast<int>(receive_vector<std::int64_t>(0, comm).at(0));
       mine.ids = receive_vector<std::int64_t>(0, comm), mine.values = receive_vector<double>(0, comm);
-    }
-    // row() needs sorted ids
-    std::vector<std::size_t> order(mine.ids.size());
-    std::iota(order.begin(), order.end(), std::size_t(0));
-    if (!std::is_sorted(mine.ids.begin(), mine.ids.end())) {
-      std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return mine.ids[a] < mine.ids[b]; });
-      CheckpointTable sorted;
-      sorted.width = mine.width;
-      for (const std::size_t i : order) {
-        sorted.ids.push_back(mine.ids[i]);
-        sorted.values.insert(sorted.values.end(), mine.values.begin() + std::ptrdiff_t(i * std::size_t(mine.width)),
-                             mine.values.begin() + std::ptrdiff_t((i + 1) * std::size_t(mine.width)));
-      }
-      mine = std::move(sorted);
     }
     d.tables[name] = std::move(mine);
   }
