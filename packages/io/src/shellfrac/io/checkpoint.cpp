@@ -15,7 +15,7 @@ namespace shellfrac::io {
 
 namespace {
 
-constexpr const char* format_tag = "shellfrac checkpoint 4";
+constexpr const char* format_tag = "shellfrac checkpoint 5";
 
 /// Rows per HDF5 chunk of a table (chunked storage carries the Fletcher32 checksum of every chunk).
 constexpr hsize_t rows_per_chunk = 4096;
@@ -347,19 +347,31 @@ std::vector<T> receive_vector(int from, MPI_Comm comm) {
   return v;
 }
 
-/// The names of the tables, the same on every rank (an internal error otherwise). Collective.
+/// The names of the tables and table sources, sorted, the same on every rank (an internal error otherwise).
+/// Collective.
 std::vector<std::string> agreed_table_names(const CheckpointData& local, MPI_Comm comm) {
+  std::vector<std::string> names;
+  for (const auto& [name, t] : local.tables) names.push_back(name);
+  for (const auto& [name, source] : local.table_sources) {
+    SHELLFRAC_REQUIRE(!local.tables.count(name), "checkpoint: table " << name << " given twice");
+    names.push_back(name);
+  }
+  std::sort(names.begin(), names.end());
   std::string mine;
-  for (const auto& [name, t] : local.tables) mine += name + '\n';
+  for (const auto& name : names) mine += name + '\n';
   std::string roots = mine;
   parallel::broadcast(roots, 0, comm);
   SHELLFRAC_REQUIRE(!parallel::any(roots != mine, comm), "checkpoint: the ranks hold different tables");
-  std::vector<std::string> names;
-  for (const auto& [name, t] : local.tables) names.push_back(name);
   return names;
 }
 
 }  // namespace
+
+CheckpointData built(CheckpointData data) {
+  for (const auto& [name, source] : data.table_sources) data.tables[name] = source();
+  data.table_sources.clear();
+  return data;
+}
 
 const double* CheckpointTable::row(GlobalId id) const {
   const auto it = std::lower_bound(ids.begin(), ids.end(), id);
@@ -390,7 +402,9 @@ void write_checkpoint(const std::string& path, const CheckpointData& local, MPI_
   std::unique_ptr<FileWriter> writer;
   attempt([&] { writer = std::make_unique<FileWriter>(path, local, names.size()); });
   for (const auto& name : names) {
-    const CheckpointTable& t = local.tables.at(name);
+    const auto given = local.tables.find(name);
+    const CheckpointTable built_here = given == local.tables.end() ? local.table_sources.at(name)() : CheckpointTable{};
+    const CheckpointTable& t = given == local.tables.end() ? built_here : given->second;
     const int width = static_cast<int>(parallel::max(double(t.width), comm));
     if (me != 0) {
       send_vector(t.ids, 0, comm), send_vector(t.values, 0, comm);

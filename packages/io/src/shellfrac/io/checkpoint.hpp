@@ -5,7 +5,7 @@
 ///
 /// Layout of a file: group /tables/<name> with datasets "ids" (int64, sorted, unique) and "values" (double,
 /// rows x width); group /scalars with one double attribute per scalar; group /strings with one variable-length
-/// string attribute per string; root attribute "format" = "shellfrac checkpoint 4" and "checksum", a 128-bit
+/// string attribute per string; root attribute "format" = "shellfrac checkpoint 5" and "checksum", a 128-bit
 /// digest (core/digest.hpp) of every scalar, string and table (tables in name order, values in blocks of the
 /// chunk size). The file uses the HDF5 1.10 format (checksummed superblock and object headers) and each table
 /// chunk carries a Fletcher32 checksum: a damaged file is refused on reading, never restarted from.
@@ -15,6 +15,7 @@
 /// while writing never destroys the previous checkpoint; a failed write is an OutputError naming the file.
 #include <mpi.h>
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -37,7 +38,14 @@ struct CheckpointData {
   std::map<std::string, double> scalars;
   std::map<std::string, std::string> strings;
   std::map<std::string, CheckpointTable> tables;
+  /// Tables built only when the checkpoint is written, one at a time, so that writing a large state never holds a
+  /// copy of all of it (names distinct from those of `tables`). They read what they were made from: valid while
+  /// it lives and unchanged; built() makes a snapshot.
+  std::map<std::string, std::function<CheckpointTable()>> table_sources;
 };
+
+/// `data` with every table source built into a table (a copy that outlives what the sources read).
+CheckpointData built(CheckpointData data);
 
 /// Writes `local` (each rank's own rows; scalars and strings from rank 0) atomically to `path`. Rows of all ranks
 /// are merged and sorted by id; an id given by two ranks must carry the same values. Throws OutputError naming

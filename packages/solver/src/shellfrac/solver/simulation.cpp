@@ -319,7 +319,7 @@ RunSummary Simulation::run() {
   // of the state kept in memory every 50 steps (as large as the state: docs/performance.md), written then.
   const bool checkpointing = deck_.checkpoint.step_interval > 0 || deck_.checkpoint.wall_minutes > 0;
   std::optional<io::CheckpointData> last_good;
-  if (!checkpointing) last_good = dyn.checkpoint();
+  if (!checkpointing) last_good = io::built(dyn.checkpoint());
   // Stop when the next step would overshoot the end time by more than half a step.
   while (dyn.time() + 0.5 * dyn.time_step() < tp.end_time) {
     try {
@@ -327,7 +327,7 @@ RunSummary Simulation::run() {
     } catch (const NumericalError& e) {
       throw NumericalError(stop_at_blow_up(e, checkpoints, out, last_good, on_disk));
     }
-    if (last_good && dyn.step_count() % 50 == 0) last_good.reset(), last_good = dyn.checkpoint();  // one copy at a time
+    if (last_good && dyn.step_count() % 50 == 0) last_good.reset(), last_good = io::built(dyn.checkpoint());  // one copy at a time
     history_written = dyn.step_count() % tp.history_interval == 0;
     if (history_written) out.write_history();
     frame_written = frames.due(dyn.time(), dyn.time_step());

@@ -31,63 +31,63 @@ void read_row(Rows<P, V>& f, LocalId r, const double*& in) {
 }
 void read_row(std::vector<int>& f, LocalId r, const double*& in) { f[r] = int(*in++); }
 
-int element_width() {
-  ShellState s;
-  int w = 0;
-  ShellState::visit_element_fields(s, [&](const char*, const auto& f) { w += field_width(f); });
-  return w;
-}
-int interface_width() {
-  ShellState s;
-  int w = 0;
-  ShellState::visit_interface_fields(s, [&](const char*, const auto& f) { w += field_width(f); });
-  return w;
-}
+std::string element_table(const char* field) { return std::string("element ") + field; }
+std::string interface_table(const char* field) { return std::string("interface ") + field; }
 
 }  // namespace
 
+// One table per field, each built only when the checkpoint is written (CheckpointData::table_sources).
 io::CheckpointData state_checkpoint(const ShellState& s, const decomposition::DistributedMesh& dm, bool plastic) {
   io::CheckpointData d;
   d.scalars["time"] = s.time, d.scalars["step"] = double(s.step);
   d.scalars["num_elements"] = double(dm.num_global_elements());
-  auto& el = d.tables["elements"];
-  el.width = element_width();
-  for (LocalId le = 0; le < dm.num_owned(); ++le) {
-    el.ids.push_back(dm.element_gid(le));
-    ShellState::visit_element_fields(s, [&](const char*, const auto& f) { append_row(f, le, el.values); });
-  }
-  if (plastic) {
-    auto& pl = d.tables["plastic"];
-    pl.width = nq * plastic_state_values;
-    for (LocalId le = 0; le < dm.num_owned(); ++le) {
-      pl.ids.push_back(dm.element_gid(le));
-      for (int q = 0; q < nq; ++q) {
-        double v[plastic_state_values];
-        pack_plastic_state(s.plastic[le * nq + q], v);
-        pl.values.insert(pl.values.end(), v, v + plastic_state_values);
+  const auto* mesh = &dm;
+  ShellState::visit_element_fields(s, [&](const char* name, const auto& f) {
+    d.table_sources[element_table(name)] = [field = &f, mesh] {
+      io::CheckpointTable t;
+      t.width = field_width(*field);
+      for (LocalId le = 0; le < mesh->num_owned(); ++le) t.ids.push_back(mesh->element_gid(le)), append_row(*field, le, t.values);
+      return t;
+    };
+  });
+  if (plastic)
+    d.table_sources["plastic"] = [state = &s, mesh] {
+      io::CheckpointTable t;
+      t.width = nq * plastic_state_values;
+      for (LocalId le = 0; le < mesh->num_owned(); ++le) {
+        t.ids.push_back(mesh->element_gid(le));
+        for (int q = 0; q < nq; ++q) {
+          double v[plastic_state_values];
+          pack_plastic_state(state->plastic[le * nq + q], v);
+          t.values.insert(t.values.end(), v, v + plastic_state_values);
+        }
       }
-    }
-  }
-  auto& it = d.tables["interfaces"];
-  it.width = interface_width();
-  const auto& ifs = dm.interfaces();
-  for (std::size_t i = 0; i < ifs.size(); ++i) {
-    if (!ifs[i].owned) continue;
-    it.ids.push_back(ifs[i].gid);
-    ShellState::visit_interface_fields(s, [&](const char*, const auto& f) { append_row(f, LocalId(i), it.values); });
-  }
+      return t;
+    };
+  ShellState::visit_interface_fields(s, [&](const char* name, const auto& f) {
+    d.table_sources[interface_table(name)] = [field = &f, mesh] {
+      io::CheckpointTable t;
+      t.width = field_width(*field);
+      const auto& ifs = mesh->interfaces();
+      for (std::size_t i = 0; i < ifs.size(); ++i)
+        if (ifs[i].owned) t.ids.push_back(ifs[i].gid), append_row(*field, LocalId(i), t.values);
+      return t;
+    };
+  });
   return d;
 }
 
 std::map<std::string, std::vector<GlobalId>> checkpoint_rows(const decomposition::DistributedMesh& dm, bool plastic) {
+  std::vector<GlobalId> elements, interfaces;
+  for (LocalId le = 0; le < dm.num_owned(); ++le) elements.push_back(dm.element_gid(le));
+  for (const auto& f : dm.interfaces()) interfaces.push_back(f.gid);
+  std::sort(interfaces.begin(), interfaces.end());
+  interfaces.erase(std::unique(interfaces.begin(), interfaces.end()), interfaces.end());
   std::map<std::string, std::vector<GlobalId>> rows;
-  auto& el = rows["elements"];
-  for (LocalId le = 0; le < dm.num_owned(); ++le) el.push_back(dm.element_gid(le));
-  if (plastic) rows["plastic"] = el;
-  auto& it = rows["interfaces"];
-  for (const auto& f : dm.interfaces()) it.push_back(f.gid);
-  std::sort(it.begin(), it.end());
-  it.erase(std::unique(it.begin(), it.end()), it.end());
+  ShellState none;
+  ShellState::visit_element_fields(none, [&](const char* name, const auto&) { rows[element_table(name)] = elements; });
+  if (plastic) rows["plastic"] = elements;
+  ShellState::visit_interface_fields(none, [&](const char* name, const auto&) { rows[interface_table(name)] = interfaces; });
   return rows;
 }
 
@@ -109,25 +109,31 @@ void restore_state(const io::CheckpointData& d, const std::string& file, const d
                           file << ": the checkpoint has " << GlobalId(scalar("num_elements")) << " elements, the mesh "
                                << dm.num_global_elements());
   s.time = scalar("time"), s.step = long(scalar("step"));
-  const auto& el = table("elements", element_width());
-  const io::CheckpointTable* pl = plastic ? &table("plastic", nq * plastic_state_values) : nullptr;
-  for (LocalId le = 0; le < dm.num_owned(); ++le) {
-    const GlobalId gid = dm.element_gid(le);
-    const double* r = el.row(gid);
-    SHELLFRAC_INPUT_REQUIRE(r, file << ": the checkpoint has no state for element " << gid + 1);
-    ShellState::visit_element_fields(s, [&](const char*, auto& f) { read_row(f, le, r); });
-    if (!pl) continue;
-    const double* p = pl->row(gid);
-    SHELLFRAC_INPUT_REQUIRE(p, file << ": the checkpoint has no plastic state for element " << gid + 1);
-    for (int q = 0; q < nq; ++q, p += plastic_state_values) unpack_plastic_state(p, s.plastic[le * nq + q]);
+  ShellState::visit_element_fields(s, [&](const char* name, auto& f) {
+    const auto& t = table(element_table(name).c_str(), field_width(f));
+    for (LocalId le = 0; le < dm.num_owned(); ++le) {
+      const double* r = t.row(dm.element_gid(le));
+      SHELLFRAC_INPUT_REQUIRE(r, file << ": the checkpoint has no " << name << " for element " << dm.element_gid(le) + 1);
+      read_row(f, le, r);
+    }
+  });
+  if (plastic) {
+    const auto& pl = table("plastic", nq * plastic_state_values);
+    for (LocalId le = 0; le < dm.num_owned(); ++le) {
+      const double* p = pl.row(dm.element_gid(le));
+      SHELLFRAC_INPUT_REQUIRE(p, file << ": the checkpoint has no plastic state for element " << dm.element_gid(le) + 1);
+      for (int q = 0; q < nq; ++q, p += plastic_state_values) unpack_plastic_state(p, s.plastic[le * nq + q]);
+    }
   }
-  const auto& it = table("interfaces", interface_width());
   const auto& ifs = dm.interfaces();
-  for (std::size_t i = 0; i < ifs.size(); ++i) {
-    const double* r = it.row(ifs[i].gid);
-    SHELLFRAC_INPUT_REQUIRE(r, file << ": the checkpoint has no state for interface " << ifs[i].gid + 1);
-    ShellState::visit_interface_fields(s, [&](const char*, auto& f) { read_row(f, LocalId(i), r); });
-  }
+  ShellState::visit_interface_fields(s, [&](const char* name, auto& f) {
+    const auto& t = table(interface_table(name).c_str(), field_width(f));
+    for (std::size_t i = 0; i < ifs.size(); ++i) {
+      const double* r = t.row(ifs[i].gid);
+      SHELLFRAC_INPUT_REQUIRE(r, file << ": the checkpoint has no " << name << " for interface " << ifs[i].gid + 1);
+      read_row(f, LocalId(i), r);
+    }
+  });
 }
 
 }  // namespace shellfrac::solver
