@@ -11,7 +11,7 @@ namespace shellfrac::solver {
 struct GhostExchange::Impl {
   const decomposition::DistributedMesh& dm;
   // Per channel: the send rows (ElementMaps::senders, in send_rows order) and the ghost rows.
-  std::vector<Teuchos::RCP<decomposition::multivector_type>> own, ghost;
+  std::vector<Teuchos::RCP<decomposition::multivector_type>> send, ghost;
   std::vector<int> width;
 };
 
@@ -19,7 +19,7 @@ GhostExchange::GhostExchange(const decomposition::DistributedMesh& dm, std::init
     : impl_(new Impl{dm, {}, {}, {}}) {
   const auto& maps = dm.maps();
   for (int w : channel_widths) {
-    impl_->own.push_back(Teuchos::rcp(new decomposition::multivector_type(maps.senders, w)));
+    impl_->send.push_back(Teuchos::rcp(new decomposition::multivector_type(maps.senders, w)));
     impl_->ghost.push_back(Teuchos::rcp(new decomposition::multivector_type(maps.ghosts, w)));
     impl_->width.push_back(w);
   }
@@ -28,7 +28,7 @@ GhostExchange::GhostExchange(const decomposition::DistributedMesh& dm, std::init
 GhostExchange::~GhostExchange() = default;
 
 void GhostExchange::import_ghost_rows(int channel, std::initializer_list<RowBuffer> buffers) {
-  auto& own = *impl_->own.at(channel);
+  auto& send = *impl_->send.at(channel);
   auto& ghost = *impl_->ghost.at(channel);
   int total = 0;
   for (const auto& b : buffers) total += b.width;
@@ -36,7 +36,7 @@ void GhostExchange::import_ghost_rows(int channel, std::initializer_list<RowBuff
                                                                                         << impl_->width[channel]);
   const auto& maps = impl_->dm.maps();
   {
-    auto s = own.getLocalViewHost(Tpetra::Access::ReadWrite);
+    auto s = send.getLocalViewHost(Tpetra::Access::ReadWrite);
     for (std::size_t r = 0; r < maps.send_rows.size(); ++r) {
       const LocalId le = maps.send_rows[r];
       int col = 0;
@@ -44,7 +44,7 @@ void GhostExchange::import_ghost_rows(int channel, std::initializer_list<RowBuff
         for (int i = 0; i < b.width; ++i) s(r, col++) = b.data[std::size_t(le) * b.width + i];
     }
   }
-  ghost.doImport(own, *maps.send_importer, Tpetra::INSERT);
+  ghost.doImport(send, *maps.send_importer, Tpetra::INSERT);
   auto s = ghost.getLocalViewHost(Tpetra::Access::ReadOnly);
   const auto num_ghosts = static_cast<LocalId>(ghost.getLocalLength());
   const LocalId first = impl_->dm.num_owned();
