@@ -130,6 +130,8 @@ TEST(DgVerification, LiftingJumpIdentity) {
       ShellKinematics kin[num_area_points];
       dg_kinematics(model.refs[e], xe, te, lf, xn, tn, kin);
       const DgElementRef& R = model.refs[e];
+      AreaPointShapes S;
+      area_point_shapes(S);
       const int ke = local_edge(e);
       // Local Cartesian basis (constant on an affine element) and the components nu_i = nu . e_i.
       AreaPointGeometry geo;
@@ -144,7 +146,7 @@ TEST(DgVerification, LiftingJumpIdentity) {
           for (int q = 0; q < num_area_points; ++q) {
             const double du = kin[q].a[i][r] - ei[i][r];  // d^DG_i (x - X), since d_i X = e_i
             integral += R.wj0[q] * du;
-            for (int b = 0; b < 3; ++b) moment[b] += R.wj0[q] * du * R.L[q][b];
+            for (int b = 0; b < 3; ++b) moment[b] += R.wj0[q] * du * S.L[q][b];
             dintegral += R.wj0[q] * kin[q].d[i][r];  // flat: d^DG t0 = 0
             // P0 director lifting: uniform derivative -1/2 ct_r nu_i |e| / |E|.
             worst_director = std::max(worst_director, std::abs(kin[q].d[i][r] + 0.5 * ct[r] * nui[i] * elen / R.area));

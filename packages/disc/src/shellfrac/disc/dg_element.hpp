@@ -1,8 +1,10 @@
 #pragma once
 /// \file dg_element.hpp
 /// The DG shell operator on one element and on one interface (theory.md §5; paper §4.2, eqs. 41-44).
-///  * DgElementRef: reference data of an element, constant in time (area-point geometry, shape function
-///    derivatives, reference strain offsets, edge-point data and lifting weights W).
+///  * DgElementRef: reference data of an element, constant in time (area-point geometry, reference strain
+///    offsets, edge-point data, the inverse lifting mass matrix). What follows from it or is the same for every
+///    element is evaluated in the kernel, not stored: the reference triangle's shape data (AreaPointShapes), the
+///    lifting weights W (LiftingWeights) and the P1 projection matrix (projection_matrix).
 ///  * dg_kinematics: the DG derivatives by lifting (theory.md §5.2) at the area points (a_i, d_i, t_h);
 ///    the first stage of dg_element_forces, exposed for verification.
 ///  * dg_element_forces: DG derivatives by lifting of the jumps over the element's lifted edges (theory.md
@@ -61,28 +63,87 @@ KOKKOS_INLINE_FUNCTION EdgePointShapes edge_point_shapes(double s, double s_othe
 
 /// Reference data of one local edge of an element.
 struct DgEdgeRef {
-  double omega[num_edge_points];         ///< omega_g = w_g |dX/ds|: reference arc-length weights (theory.md §1.4)
-  double nu_cov[num_edge_points][2];     ///< nu_{E,alpha}(g) = nu_E . G_alpha, nu_E the outward reference co-normal
-  double s_nbr[num_edge_points];         ///< edge parameter of the matched point in the neighbour (s or 1 - s)
-  double Wu[num_edge_points][2][3];      ///< position lifting weights W^u_{g,alpha} = 1/2 omega nu_alpha Mpsi^-1 psi
-  double Wt[num_edge_points][2];         ///< director lifting weights W^t_{g,alpha} = 1/2 omega nu_alpha / |E|
+  double omega[num_edge_points];      ///< omega_g = w_g |dX/ds|: reference arc-length weights (theory.md §1.4)
+  double nu_cov[num_edge_points][2];  ///< nu_{E,alpha}(g) = nu_E . G_alpha, nu_E the outward reference co-normal
+  bool nbr_same_direction;            ///< the neighbour traverses the edge in the same direction (not for a
+                                      ///< consistently oriented neighbour)
 };
 
-/// Reference data of one element (theory.md §5.3).
+/// Edge parameter, in the neighbour across edge E, of the point at edge point g of this element.
+KOKKOS_INLINE_FUNCTION double neighbour_edge_parameter(const DgEdgeRef& E, int g) {
+  return E.nbr_same_direction ? edge3_rule.s[g] : 1 - edge3_rule.s[g];
+}
+
+/// Reference data of one element (theory.md §5.3): only what differs between elements. The shape data of the
+/// reference triangle (AreaPointShapes) and the lifting weights (LiftingWeights) follow from it.
 struct DgElementRef {
-  double wj0[num_area_points];           ///< w_q j0_q
-  double Jinv[num_area_points][2][2];    ///< (J^-1)_{alpha i}
-  double dN[num_area_points][6][2];      ///< P2 shape derivatives dN^A/dxi^alpha
-  double L[num_area_points][3];          ///< P1 shape values (also the P1 lifting basis psi_u)
-  double dL[3][2];                       ///< P1 shape derivatives (constant)
-  ShellReference ref[num_area_points];   ///< reference strain offsets gam0, rho0
+  double wj0[num_area_points];         ///< w_q j0_q
+  double Jinv[num_area_points][2][2];  ///< (J^-1)_{alpha i}
+  ShellReference ref[num_area_points]; ///< reference strain offsets gam0, rho0
   DgEdgeRef edge[3];
-  double area;                           ///< |E| = sum_q w_q j0_q
+  double area;                         ///< |E| = sum_q w_q j0_q
+  double Minv[3][3];                   ///< inverse of the P1 lifting mass matrix M_psi = sum_q w_q j0_q psi psi^T
   /// Membrane strains and forces are used through their P1 L2 projection on the element (theory.md §5.4;
-  /// false: at the area points as they are). P[q][p]: (Pi f)(xi_q) = sum_p P[q][p] f(xi_p).
+  /// false: at the area points as they are).
   bool project_membrane;
-  double P[num_area_points][num_area_points];
 };
+
+/// Shape data of the reference triangle at the area points of tri6_rule: the same for every element.
+struct AreaPointShapes {
+  double dN[num_area_points][6][2];  ///< P2 shape derivatives dN^A/dxi^alpha
+  double L[num_area_points][3];      ///< P1 shape values (also the P1 lifting basis psi_u)
+  double dL[3][2];                   ///< P1 shape derivatives (constant)
+};
+
+KOKKOS_INLINE_FUNCTION void area_point_shapes(AreaPointShapes& S) {
+  double N[6], L[3], dL[3][2];
+  for (int q = 0; q < num_area_points; ++q) {
+    p2_shape(tri6_rule.xi[q][0], tri6_rule.xi[q][1], N, S.dN[q]);
+    p1_shape(tri6_rule.xi[q][0], tri6_rule.xi[q][1], L, dL);
+    for (int a = 0; a < 3; ++a) S.L[q][a] = L[a];
+  }
+  for (int a = 0; a < 3; ++a) S.dL[a][0] = dL[a][0], S.dL[a][1] = dL[a][1];
+}
+
+/// Lifting weights of an element's edges (theory.md §5.2): W^u_{g,alpha} = 1/2 omega_g nu_alpha M_psi^-1 psi(xi_g)
+/// (positions, P1 lifting) and W^t_{g,alpha} = 1/2 omega_g nu_alpha / |E| (directors, P0 lifting).
+struct LiftingWeights {
+  double Wu[3][num_edge_points][2][3];
+  double Wt[3][num_edge_points][2];
+};
+
+KOKKOS_INLINE_FUNCTION void lifting_weights(const DgElementRef& R, LiftingWeights& W) {
+  for (int k = 0; k < 3; ++k) {
+    const int vi = edge_node(k, 0), vj = edge_node(k, 1);
+    const DgEdgeRef& E = R.edge[k];
+    for (int g = 0; g < num_edge_points; ++g) {
+      const double s = edge3_rule.s[g];
+      const double xi1 = (1 - s) * p2_node_xi[vi][0] + s * p2_node_xi[vj][0];
+      const double xi2 = (1 - s) * p2_node_xi[vi][1] + s * p2_node_xi[vj][1];
+      double L[3], dL[3][2];
+      p1_shape(xi1, xi2, L, dL);
+      for (int al = 0; al < 2; ++al) {
+        const double c = 0.5 * E.omega[g] * E.nu_cov[g][al];
+        for (int b = 0; b < 3; ++b)
+          W.Wu[k][g][al][b] = c * (R.Minv[b][0] * L[0] + R.Minv[b][1] * L[1] + R.Minv[b][2] * L[2]);
+        W.Wt[k][g][al] = 0.5 * E.omega[g] * E.nu_cov[g][al] / R.area;
+      }
+    }
+  }
+}
+
+/// The P1 L2 projection on the element as a matrix on area-point values: (Pi f)(xi_q) = sum_p P[q][p] f(xi_p),
+/// P[q][p] = psi(xi_q)^T M_psi^-1 psi(xi_p) w_p j0_p (theory.md §5.4).
+KOKKOS_INLINE_FUNCTION void projection_matrix(const DgElementRef& R, const AreaPointShapes& S,
+                                              double P[num_area_points][num_area_points]) {
+  for (int q = 0; q < num_area_points; ++q)
+    for (int p = 0; p < num_area_points; ++p) {
+      double v = 0;
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) v += S.L[q][a] * R.Minv[a][b] * S.L[p][b];
+      P[q][p] = v * R.wj0[p];
+    }
+}
 
 namespace detail {
 /// Inverse of a symmetric positive definite 3x3 matrix (the P1 lifting mass matrix).
@@ -108,9 +169,7 @@ KOKKOS_INLINE_FUNCTION void build_dg_element_ref(const double X[6][3], const dou
                                                  const bool nbr_same_direction[3], DgElementRef& R,
                                                  bool project_membrane = false) {
   double L[3], dL[3][2];
-  p1_shape(0, 0, L, dL);
-  for (int a = 0; a < 3; ++a) R.dL[a][0] = dL[a][0], R.dL[a][1] = dL[a][1];
-  // Area points: geometry, shape data, reference kinematics -> strain offsets; lifting mass matrix.
+  // Area points: geometry, reference kinematics -> strain offsets; lifting mass matrix.
   double Mpsi[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
   R.area = 0;
   for (int q = 0; q < num_area_points; ++q) {
@@ -123,9 +182,7 @@ KOKKOS_INLINE_FUNCTION void build_dg_element_ref(const double X[6][3], const dou
       for (int i = 0; i < 2; ++i) R.Jinv[q][al][i] = geo.Jinv[al][i];
     double N[6], dN[6][2];
     p2_shape(xi1, xi2, N, dN);
-    for (int A = 0; A < 6; ++A) R.dN[q][A][0] = dN[A][0], R.dN[q][A][1] = dN[A][1];
     p1_shape(xi1, xi2, L, dL);
-    for (int a = 0; a < 3; ++a) R.L[q][a] = L[a];
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) Mpsi[a][b] += geo.wj0 * L[a] * L[b];
     // Reference kinematics: phi_0 and t_0 are continuous, so their DG derivatives are the ordinary ones.
@@ -142,20 +199,13 @@ KOKKOS_INLINE_FUNCTION void build_dg_element_ref(const double X[6][3], const dou
     }
     R.ref[q] = make_shell_reference(k0);
   }
-  double Minv[3][3];
-  detail::inverse33(Mpsi, Minv);
+  detail::inverse33(Mpsi, R.Minv);
   R.project_membrane = project_membrane;
-  for (int q = 0; q < num_area_points; ++q)
-    for (int p = 0; p < num_area_points; ++p) {
-      double v = 0;
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) v += R.L[q][a] * Minv[a][b] * R.L[p][b];
-      R.P[q][p] = v * R.wj0[p];
-    }
-  // Edges: arc-length weights, outward co-normals and lifting weights (theory.md §1.4, §5.2).
+  // Edges: arc-length weights and outward co-normals (theory.md §1.4).
   for (int k = 0; k < 3; ++k) {
     const int vi = edge_node(k, 0), vj = edge_node(k, 1);
     DgEdgeRef& E = R.edge[k];
+    E.nbr_same_direction = nbr_same_direction[k];
     for (int g = 0; g < num_edge_points; ++g) {
       const double s = edge3_rule.s[g];
       const double xi1 = (1 - s) * p2_node_xi[vi][0] + s * p2_node_xi[vj][0];
@@ -172,18 +222,8 @@ KOKKOS_INLINE_FUNCTION void build_dg_element_ref(const double X[6][3], const dou
       cross3(tau, n0, nu);  // outward for a counter-clockwise element (theory.md §1.4 check)
       E.nu_cov[g][0] = dot3(nu, G[0]);
       E.nu_cov[g][1] = dot3(nu, G[1]);
-      E.s_nbr[g] = nbr_same_direction[k] ? s : 1 - s;
-      p1_shape(xi1, xi2, L, dL);
-      for (int al = 0; al < 2; ++al) {
-        const double c = 0.5 * E.omega[g] * E.nu_cov[g][al];
-        for (int b = 0; b < 3; ++b)
-          E.Wu[g][al][b] = c * (Minv[b][0] * L[0] + Minv[b][1] * L[1] + Minv[b][2] * L[2]);
-      }
     }
   }
-  for (int k = 0; k < 3; ++k)
-    for (int g = 0; g < num_edge_points; ++g)
-      for (int al = 0; al < 2; ++al) R.edge[k].Wt[g][al] = 0.5 * R.edge[k].omega[g] * R.edge[k].nu_cov[g][al] / R.area;
 }
 
 /// DG kinematics of one element at its area points (theory.md §2, §5.2):
@@ -193,26 +233,27 @@ KOKKOS_INLINE_FUNCTION void build_dg_element_ref(const double X[6][3], const dou
 ///   lift[k]: edge k is an intact interface with a single neighbour (its jump is lifted).
 ///   xn[k][j][3], tn[k][j][3]: the neighbour's edge nodes across edge k, in the neighbour's edge-local order
 ///   (read only where lift[k] is true).
+/// S, W: the reference triangle's shape data and the element's lifting weights.
 /// Output (overwritten): kin[q] for q = 0..num_area_points-1.
-KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const double x[6][3], const double t[3][3],
-                                          const bool lift[3], const double xn[3][3][3], const double tn[3][2][3],
+KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const AreaPointShapes& S, const LiftingWeights& W,
+                                          const double x[6][3], const double t[3][3], const bool lift[3],
+                                          const double xn[3][3][3], const double tn[3][2][3],
                                           ShellKinematics kin[num_area_points]) {
   // 1. Liftings of the one-sided jumps [u]^E = u^E - u^E' (theory.md §5.2).
   double Rx[3][2][3][3] = {};  // [k][alpha][component][psi]
   double Rt[3][2][3] = {};     // [k][alpha][component]
   for (int k = 0; k < 3; ++k) {
     if (!lift[k]) continue;
-    const DgEdgeRef& E = R.edge[k];
     for (int gp = 0; gp < num_edge_points; ++gp) {
-      const EdgePointShapes sh = edge_point_shapes(edge3_rule.s[gp], E.s_nbr[gp]);
+      const EdgePointShapes sh = edge_point_shapes(edge3_rule.s[gp], neighbour_edge_parameter(R.edge[k], gp));
       const double *no = sh.p2, *nn = sh.p2_other, *lo = sh.p1, *ln = sh.p1_other;
       for (int c = 0; c < 3; ++c) {
         double jx = 0, jt = 0;
         for (int j = 0; j < 3; ++j) jx += no[j] * x[edge_node(k, j)][c] - nn[j] * xn[k][j][c];
         for (int j = 0; j < 2; ++j) jt += lo[j] * t[edge_node(k, j)][c] - ln[j] * tn[k][j][c];
         for (int al = 0; al < 2; ++al) {
-          for (int b = 0; b < 3; ++b) Rx[k][al][c][b] += jx * E.Wu[gp][al][b];
-          Rt[k][al][c] += jt * E.Wt[gp][al];
+          for (int b = 0; b < 3; ++b) Rx[k][al][c][b] += jx * W.Wu[k][gp][al][b];
+          Rt[k][al][c] += jt * W.Wt[k][gp][al];
         }
       }
     }
@@ -223,11 +264,11 @@ KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const double x[
       double aa[2], dd[2];
       for (int al = 0; al < 2; ++al) {
         aa[al] = 0, dd[al] = 0;
-        for (int A = 0; A < 6; ++A) aa[al] += x[A][c] * R.dN[q][A][al];
-        for (int a = 0; a < 3; ++a) dd[al] += t[a][c] * R.dL[a][al];
+        for (int A = 0; A < 6; ++A) aa[al] += x[A][c] * S.dN[q][A][al];
+        for (int a = 0; a < 3; ++a) dd[al] += t[a][c] * S.dL[a][al];
         for (int k = 0; k < 3; ++k) {
           if (!lift[k]) continue;
-          for (int b = 0; b < 3; ++b) aa[al] -= Rx[k][al][c][b] * R.L[q][b];
+          for (int b = 0; b < 3; ++b) aa[al] -= Rx[k][al][c][b] * S.L[q][b];
           dd[al] -= Rt[k][al][c];
         }
       }
@@ -235,31 +276,57 @@ KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const double x[
         kin[q].a[i][c] = aa[0] * R.Jinv[q][0][i] + aa[1] * R.Jinv[q][1][i];
         kin[q].d[i][c] = dd[0] * R.Jinv[q][0][i] + dd[1] * R.Jinv[q][1][i];
       }
-      kin[q].t[c] = R.L[q][0] * t[0][c] + R.L[q][1] * t[1][c] + R.L[q][2] * t[2][c];
+      kin[q].t[c] = S.L[q][0] * t[0][c] + S.L[q][1] * t[1][c] + S.L[q][2] * t[2][c];
     }
   }
 }
 
-/// f[q][c] <- (Pi f)(xi_q): the P1 L2 projection on the element of point values f[q][0..n-1].
+/// The same, for one element on its own (verification and diagnostics).
+KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const double x[6][3], const double t[3][3],
+                                          const bool lift[3], const double xn[3][3][3], const double tn[3][2][3],
+                                          ShellKinematics kin[num_area_points]) {
+  AreaPointShapes S;
+  area_point_shapes(S);
+  LiftingWeights W;
+  lifting_weights(R, W);
+  dg_kinematics(R, S, W, x, t, lift, xn, tn, kin);
+}
+
+/// f[q][c] <- (Pi f)(xi_q): the P1 L2 projection on the element of point values f[q][0..n-1] (P from
+/// projection_matrix).
 template <int n>
-KOKKOS_INLINE_FUNCTION void project_p1(const DgElementRef& R, double f[num_area_points][n]) {
+KOKKOS_INLINE_FUNCTION void project_p1(const double P[num_area_points][num_area_points],
+                                       double f[num_area_points][n]) {
   double g[num_area_points][n];
   for (int q = 0; q < num_area_points; ++q)
     for (int c = 0; c < n; ++c) {
       g[q][c] = 0;
-      for (int p = 0; p < num_area_points; ++p) g[q][c] += R.P[q][p] * f[p][c];
+      for (int p = 0; p < num_area_points; ++p) g[q][c] += P[q][p] * f[p][c];
     }
   for (int q = 0; q < num_area_points; ++q)
     for (int c = 0; c < n; ++c) f[q][c] = g[q][c];
 }
 
-/// Strains at the area points from the DG kinematics (theory.md §2), with the membrane strains projected when
-/// the element projects them (theory.md §5.4).
+/// Strains at the area points from the DG kinematics (theory.md §2), with the membrane strains projected by P
+/// when the element projects them (theory.md §5.4; P is not read otherwise).
+KOKKOS_INLINE_FUNCTION void dg_strains(const DgElementRef& R, const double P[num_area_points][num_area_points],
+                                       const ShellKinematics kin[num_area_points], double eps[num_area_points][3],
+                                       double gam[num_area_points][2], double rho[num_area_points][3]) {
+  for (int q = 0; q < num_area_points; ++q) compute_strains(kin[q], R.ref[q], eps[q], gam[q], rho[q]);
+  if (R.project_membrane) project_p1<3>(P, eps);
+}
+
+/// The same, for one element on its own (diagnostics).
 KOKKOS_INLINE_FUNCTION void dg_strains(const DgElementRef& R, const ShellKinematics kin[num_area_points],
                                        double eps[num_area_points][3], double gam[num_area_points][2],
                                        double rho[num_area_points][3]) {
-  for (int q = 0; q < num_area_points; ++q) compute_strains(kin[q], R.ref[q], eps[q], gam[q], rho[q]);
-  if (R.project_membrane) project_p1<3>(R, eps);
+  double P[num_area_points][num_area_points];
+  if (R.project_membrane) {
+    AreaPointShapes S;
+    area_point_shapes(S);
+    projection_matrix(R, S, P);
+  }
+  dg_strains(R, P, kin, eps, gam, rho);
 }
 
 /// The traction on an element across each of its edges at the edge points (theory.md §9.5 step 1), per unit
@@ -284,8 +351,14 @@ KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const dou
                                                 const Law& law, double f[6][3], double g[3][3], double fn[3][3][3],
                                                 double gn[3][2][3], EdgeTractions* edge_tractions = nullptr) {
   // 1.-2. Liftings of the jumps and DG kinematics at the area points.
+  AreaPointShapes S;
+  area_point_shapes(S);
+  LiftingWeights W;
+  lifting_weights(R, W);
+  double P[num_area_points][num_area_points];
+  if (R.project_membrane) projection_matrix(R, S, P);
   ShellKinematics kins[num_area_points];
-  dg_kinematics(R, x, t, lift, xn, tn, kins);
+  dg_kinematics(R, S, W, x, t, lift, xn, tn, kins);
   // 2'. Area points: strains, resultants, own forces; accumulate the projections Pi.
   for (int A = 0; A < 6; ++A) f[A][0] = f[A][1] = f[A][2] = 0;
   for (int a = 0; a < 3; ++a) g[a][0] = g[a][1] = g[a][2] = 0;
@@ -293,11 +366,11 @@ KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const dou
   double Pit[2][3] = {};     // [alpha][component]:      sum_q w j0 m^alpha
   double Pim[2][3][3] = {};  // [alpha][component][psi]: sum_q w j0 m^alpha (x) psi (only for edge tractions)
   double eps[num_area_points][3], gam[num_area_points][2], rho[num_area_points][3];
-  dg_strains(R, kins, eps, gam, rho);
+  dg_strains(R, P, kins, eps, gam, rho);
   double N[num_area_points][3], Q[num_area_points][2], M[num_area_points][3];
   double energy = 0;
   for (int q = 0; q < num_area_points; ++q) energy += R.wj0[q] * law(q, eps[q], gam[q], rho[q], N[q], Q[q], M[q]);
-  if (R.project_membrane) project_p1<3>(R, N);  // the gradient of the energy of the projected strains
+  if (R.project_membrane) project_p1<3>(P, N);  // the gradient of the energy of the projected strains
   for (int q = 0; q < num_area_points; ++q) {
     const ShellKinematics& kin = kins[q];
     double n[2][3], m[2][3], l[3];
@@ -308,15 +381,15 @@ KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const dou
         // parametric components n^alpha = (J^-1)_{alpha i} n^i
         const double na = R.Jinv[q][al][0] * n[0][c] + R.Jinv[q][al][1] * n[1][c];
         const double ma = R.Jinv[q][al][0] * m[0][c] + R.Jinv[q][al][1] * m[1][c];
-        for (int A = 0; A < 6; ++A) f[A][c] += w * R.dN[q][A][al] * na;
-        for (int a = 0; a < 3; ++a) g[a][c] += w * R.dL[a][al] * ma;
-        for (int b = 0; b < 3; ++b) Pix[al][c][b] += w * na * R.L[q][b];
+        for (int A = 0; A < 6; ++A) f[A][c] += w * S.dN[q][A][al] * na;
+        for (int a = 0; a < 3; ++a) g[a][c] += w * S.dL[a][al] * ma;
+        for (int b = 0; b < 3; ++b) Pix[al][c][b] += w * na * S.L[q][b];
         Pit[al][c] += w * ma;
         if (edge_tractions)
-          for (int b = 0; b < 3; ++b) Pim[al][c][b] += w * ma * R.L[q][b];
+          for (int b = 0; b < 3; ++b) Pim[al][c][b] += w * ma * S.L[q][b];
       }
     for (int a = 0; a < 3; ++a)
-      for (int c = 0; c < 3; ++c) g[a][c] += w * R.L[q][a] * l[c];
+      for (int c = 0; c < 3; ++c) g[a][c] += w * S.L[q][a] * l[c];
   }
   // 2''. Edge tractions of the projected resultants: W^u_{g,alpha} = 1/2 omega_g nu_alpha Mpsi^-1 psi(xi_g).
   if (edge_tractions)
@@ -327,7 +400,7 @@ KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const dou
         for (int c = 0; c < 3; ++c) {
           double n = 0, m = 0;
           for (int al = 0; al < 2; ++al)
-            for (int b = 0; b < 3; ++b) n += Pix[al][c][b] * E.Wu[gp][al][b], m += Pim[al][c][b] * E.Wu[gp][al][b];
+            for (int b = 0; b < 3; ++b) n += Pix[al][c][b] * W.Wu[k][gp][al][b], m += Pim[al][c][b] * W.Wu[k][gp][al][b];
           edge_tractions->at[k][gp][c] = s * n, edge_tractions->at[k][gp][3 + c] = s * m;
         }
       }
@@ -336,15 +409,14 @@ KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const dou
     for (int j = 0; j < 3; ++j) fn[k][j][0] = fn[k][j][1] = fn[k][j][2] = 0;
     for (int j = 0; j < 2; ++j) gn[k][j][0] = gn[k][j][1] = gn[k][j][2] = 0;
     if (!lift[k]) continue;
-    const DgEdgeRef& E = R.edge[k];
     for (int gp = 0; gp < num_edge_points; ++gp) {
-      const EdgePointShapes sh = edge_point_shapes(edge3_rule.s[gp], E.s_nbr[gp]);
+      const EdgePointShapes sh = edge_point_shapes(edge3_rule.s[gp], neighbour_edge_parameter(R.edge[k], gp));
       const double *no = sh.p2, *nn = sh.p2_other, *lo = sh.p1, *ln = sh.p1_other;
       for (int c = 0; c < 3; ++c) {
         double F = 0, H = 0;
         for (int al = 0; al < 2; ++al) {
-          for (int b = 0; b < 3; ++b) F += Pix[al][c][b] * E.Wu[gp][al][b];
-          H += Pit[al][c] * E.Wt[gp][al];
+          for (int b = 0; b < 3; ++b) F += Pix[al][c][b] * W.Wu[k][gp][al][b];
+          H += Pit[al][c] * W.Wt[k][gp][al];
         }
         for (int j = 0; j < 3; ++j) {
           f[edge_node(k, j)][c] -= no[j] * F;
@@ -372,7 +444,7 @@ KOKKOS_INLINE_FUNCTION void build_dg_interface_ref(const DgEdgeRef& minus_edge, 
   double he = 0;
   for (int g = 0; g < num_edge_points; ++g) {
     I.omega[g] = minus_edge.omega[g];
-    I.s_plus[g] = minus_edge.s_nbr[g];
+    I.s_plus[g] = neighbour_edge_parameter(minus_edge, g);
     he += I.omega[g];
   }
   I.inv_he = 1.0 / he;
