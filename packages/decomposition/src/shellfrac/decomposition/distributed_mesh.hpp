@@ -73,6 +73,7 @@ class DistributedMesh {
   int element_owner(LocalId le) const { return element_owner_[le]; }
   /// Block index (into SerialMesh::blocks) of overlap element le.
   int element_block(LocalId le) const { return element_block_[le]; }
+  const std::vector<int>& element_blocks() const { return element_block_; }
   /// Reference coordinates of DG node a of overlap element le.
   const Vec3& node_coords(LocalId le, int a) const { return coords_[le * npe_ + a]; }
   /// Original (conforming) mesh node of DG node a of overlap element le.

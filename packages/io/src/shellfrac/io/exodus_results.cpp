@@ -7,6 +7,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <limits>
 #include <map>
@@ -232,18 +233,20 @@ class FileWriter {
     SHELLFRAC_EXO_CHECK(ex_update(id), path);
   }
 
-  /// nodal[v]: num_nodes values (layout node order); element[s]: one value per element (layout order);
+  /// nodal(v, buffer): the num_nodes values (layout node order) of nodal variable v, either its own storage or
+  /// `buffer` (num_nodes long, reused for every variable) filled; element[s]: one value per element (layout order);
   /// global: num_global values (null if none).
-  int put_step(double time, const std::vector<const double*>& nodal, const std::vector<const double*>& element,
-               const double* global) {
+  int put_step(double time, const std::function<const double*(std::size_t, double*)>& nodal,
+               const std::vector<const double*>& element, const double* global) {
     const int id = file_.id();
     const int step = ++steps_;
     SHELLFRAC_EXO_CHECK(ex_put_time(id, step, &time), path_ << ": step " << step);
     const double placeholder_value = 0.0;
-    for (std::size_t v = 0; v < nodal.size(); ++v)
+    std::vector<double> buffer(num_nodal_ > 0 ? num_nodes_ : 0);
+    for (std::size_t v = 0; v < num_nodal_; ++v)
       SHELLFRAC_EXO_CHECK(ex_put_var(id, step, EX_NODAL, static_cast<int>(v) + 1, 1,
                                      static_cast<std::int64_t>(num_file_nodes_),
-                                     num_nodes_ > 0 ? nodal[v] : &placeholder_value),
+                                     num_nodes_ > 0 ? nodal(v, buffer.data()) : &placeholder_value),
                           path_ << ": step " << step << ", nodal variable " << v + 1);
     std::vector<double> buf;
     for (std::size_t s = 0; s < element.size(); ++s)
@@ -726,24 +729,30 @@ ExodusResultsWriter::~ExodusResultsWriter() = default;
 int ExodusResultsWriter::write_step(double time, const std::vector<std::vector<Vec3>>& nodal,
                                     const std::vector<std::vector<double>>& element,
                                     const std::vector<double>& global) {
-  auto& w = impl_->writer;
   SHELLFRAC_REQUIRE(nodal.size() == impl_->num_vectors,
                     file_ << ": write_step got " << nodal.size() << " nodal vectors, expected " << impl_->num_vectors);
+  for (std::size_t v = 0; v < nodal.size(); ++v)
+    SHELLFRAC_REQUIRE(nodal[v].size() == impl_->writer.num_nodes(), file_ << ": nodal vector " << v << " has "
+                                                                          << nodal[v].size() << " values, expected "
+                                                                          << impl_->writer.num_nodes());
+  const auto component = [&](std::size_t v, int c, double* out) {
+    for (const auto& x : nodal[v]) *out++ = x[c];
+  };
+  return write_step(time, component, element, global);
+}
+
+int ExodusResultsWriter::write_step(double time, const NodalComponent& nodal,
+                                    const std::vector<std::vector<double>>& element,
+                                    const std::vector<double>& global) {
+  auto& w = impl_->writer;
   SHELLFRAC_REQUIRE(element.size() == w.num_element_vars(), file_ << ": write_step got " << element.size()
                                                                   << " element scalars, expected "
                                                                   << w.num_element_vars());
-  std::vector<std::vector<double>> comps(3 * nodal.size());
-  std::vector<const double*> nodal_ptr, element_ptr;
-  for (std::size_t v = 0; v < nodal.size(); ++v) {
-    SHELLFRAC_REQUIRE(nodal[v].size() == w.num_nodes(), file_ << ": nodal vector " << v << " has " << nodal[v].size()
-                                                              << " values, expected " << w.num_nodes());
-    for (int c = 0; c < 3; ++c) {
-      auto& out = comps[3 * v + c];
-      out.reserve(w.num_nodes());
-      for (const auto& x : nodal[v]) out.push_back(x[c]);
-      nodal_ptr.push_back(out.data());
-    }
-  }
+  std::vector<const double*> element_ptr;
+  const auto nodal_variable = [&](std::size_t var, double* buffer) -> const double* {
+    nodal(var / 3, static_cast<int>(var % 3), buffer);
+    return buffer;
+  };
   for (std::size_t s = 0; s < element.size(); ++s) {
     SHELLFRAC_REQUIRE(element[s].size() == w.num_elements(), file_ << ": element scalar " << s << " has "
                                                                    << element[s].size() << " values, expected "
@@ -752,7 +761,7 @@ int ExodusResultsWriter::write_step(double time, const std::vector<std::vector<V
   }
   SHELLFRAC_REQUIRE(global.size() == w.num_global(),
                     file_ << ": write_step got " << global.size() << " global values, expected " << w.num_global());
-  return w.put_step(time, nodal_ptr, element_ptr, global.data());
+  return w.put_step(time, nodal_variable, element_ptr, global.data());
 }
 
 std::vector<std::string> find_rank_files(const std::string& path) {
@@ -860,7 +869,7 @@ void write_results(const ExodusResults& results, const std::string& path) {
     }
     SHELLFRAC_REQUIRE(r.global.size() == r.times.size() && r.global[s].size() == l.global_names.size(),
                       path << ": step " << s + 1 << " has the wrong number of global values");
-    w.put_step(r.times[s], nodal, element, r.global[s].data());
+    w.put_step(r.times[s], [&](std::size_t v, double*) { return nodal[v]; }, element, r.global[s].data());
   }
   w.close();
 }

@@ -18,6 +18,7 @@
 ///  * Each step is flushed (ex_update) so a crashed run leaves a readable file.
 #include <mpi.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -78,6 +79,12 @@ class ExodusResultsWriter {
   /// layout.global_variables entry. Returns the 1-based step index.
   int write_step(double time, const std::vector<std::vector<Vec3>>& nodal,
                  const std::vector<std::vector<double>>& element, const std::vector<double>& global = {});
+  /// Component c of nodal vector v (layout.nodal_vectors order) at every node, element-major as node_coords,
+  /// written to `out` (num_nodes values).
+  using NodalComponent = std::function<void(std::size_t v, int c, double* out)>;
+  /// The same, asking for one component of one nodal vector at a time: only one is held in memory.
+  int write_step(double time, const NodalComponent& nodal, const std::vector<std::vector<double>>& element,
+                 const std::vector<double>& global = {});
 
   /// The file this rank writes.
   const std::string& file_name() const { return file_; }

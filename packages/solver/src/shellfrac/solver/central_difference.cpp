@@ -1,5 +1,6 @@
 #include "shellfrac/solver/central_difference.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -181,7 +182,7 @@ CentralDifference::CentralDifference(ShellModel& model, Constraints& constraints
 void CentralDifference::start(ShellState& s) {
   assembly_.exchange_state(s);
   assembly_.compute_forces(s, fracture_.cohesive_params());
-  commit_plasticity(s);
+  book_plastic_work(s);
   loads_.external_forces(s.time, s, s.external_force, s.external_director_force);
   const Accelerate accelerate = accelerations(model_, constraints_, loads_.has_director_loads(), alpha_, s, s.time,
                                               0.0, s.director_rate, programs_a_);
@@ -199,7 +200,7 @@ void CentralDifference::step(ShellState& s, double dt) {
   assembly_.exchange_state(s);
   assembly_.compute_forces(s, fracture_.cohesive_params());
   ScopedTimer timer(times_.update);
-  commit_plasticity(s);
+  book_plastic_work(s);
   if (fracture_.enabled()) {
     ScopedTimer nucleation(times_.nucleation);
     fracture_.nucleate(s.step, t1, s, model_, assembly_);
@@ -287,7 +288,17 @@ double CentralDifference::relative_residual(const ShellState& s) const {
 
 void CentralDifference::remember_step_start(const ShellState& s) {
   x_start_.vector().assign(s.x.vector().begin(), s.x.vector().begin() + std::size_t(model_.owned) * position_values);
-  fext_start_ = s.external_force, reaction_start_ = s.reaction;
+  // The loaded elements' rows only: an element without external forces at t_n adds 0 * dx to its work, and leaving
+  // out a term that is +0 or -0 does not change a sum that starts at +0 (the work stays bitwise the same).
+  fext_start_slot_.assign(std::size_t(model_.owned), -1);
+  std::vector<double>& rows = fext_start_.vector();
+  rows.clear();
+  for (LocalId le = 0; le < model_.owned; ++le) {
+    const double* f = s.external_force.at(le);
+    if (std::all_of(f, f + position_values, [](double v) { return v == 0.0; })) continue;
+    fext_start_slot_[std::size_t(le)] = int(rows.size() / position_values);
+    rows.insert(rows.end(), f, f + position_values);
+  }
   if (loads_.has_director_loads()) {
     t_start_.vector().assign(s.t.vector().begin(), s.t.vector().begin() + std::size_t(model_.owned) * director_values);
     gext_start_ = s.external_director_force;
@@ -351,15 +362,15 @@ void CentralDifference::predict(ShellState& s, double dt, double t1) {
   });
 }
 
-// Accepts the plastic state of the last element kernel as the state at the new time and adds its plastic work.
+// Adds the plastic work of the last element kernel (which updated the plastic state to the new time in place).
 // A return map that hit its iteration limit stops the run on every rank, naming the element.
-void CentralDifference::commit_plasticity(ShellState& s) const {
+void CentralDifference::book_plastic_work(ShellState& s) const {
   if (!model_.any_plastic) return;
   GlobalId bad = -1;
   const auto& failed = assembly_.return_failed();
   const auto& work = assembly_.plastic_work_increment();
   for (LocalId le = 0; le < model_.owned; ++le) {
-    if (!model_.is_plastic[le]) continue;
+    if (!model_.is_plastic(le)) continue;
     if (failed[le] && bad < 0) bad = model_.dm.element_gid(le);
     *s.plastic_work.at(le) += work[le];
   }
@@ -367,7 +378,6 @@ void CentralDifference::commit_plasticity(ShellState& s) const {
   SHELLFRAC_REQUIRE(worst < 0, "the plastic return map did not converge in element " << GlobalId(worst) + 1
                                    << " at step " << s.step << ", time " << s.time
                                    << " (docs/theory.md §4.3; a non-finite or extreme strain?)");
-  s.plastic.swap(assembly_.plastic_trial());
 }
 
 // The corrector, element by element (one pass over the element's rows): accelerations and reactions at t1
@@ -386,13 +396,16 @@ void CentralDifference::correct(ShellState& s, double dt, double t1) {
   const KernelView<const double> Tp = kernel_view(std::as_const(director_rate_predicted_));
   const KernelView<const double> x = kernel_view(std::as_const(s.x)), x0 = kernel_view(std::as_const(x_start_));
   const KernelView<const double> fe = kernel_view(std::as_const(s.external_force)), fe0 = kernel_view(std::as_const(fext_start_));
-  const KernelView<const double> R = kernel_view(std::as_const(s.reaction)), R0 = kernel_view(std::as_const(reaction_start_));
+  const KernelView<const int> fe0_slot = kernel_view(std::as_const(fext_start_slot_));
+  const KernelView<const double> R = kernel_view(std::as_const(s.reaction));
   const KernelView<const double> t = kernel_view(std::as_const(s.t)), t0 = kernel_view(std::as_const(t_start_));
   const KernelView<const double> ge = kernel_view(std::as_const(s.external_director_force));
   const KernelView<const double> ge0 = kernel_view(std::as_const(gext_start_));
   const KernelView<double> external_work = kernel_view(s.external_work), reaction_work = kernel_view(s.reaction_work);
   const bool director_loads = loads_.has_director_loads();
   Kokkos::parallel_for("shellfrac::Correct", KernelRange(0, model_.owned), [=](const LocalId le) {
+    double R0[position_values];  // the reactions at t_n, before accelerate overwrites them
+    for (int k = 0; k < position_values; ++k) R0[k] = R(le * position_values + k);
     accelerate(le);
     for (LocalId i = le * position_nodes; i < (le + 1) * position_nodes; ++i) {
       double* vi = &v(i * 3);
@@ -408,10 +421,12 @@ void CentralDifference::correct(ShellState& s, double dt, double t1) {
     for (LocalId j = le * director_nodes; j < (le + 1) * director_nodes; ++j)
       for (int c = 0; c < 2; ++c) rate(j * 2 + c) = Tp(j * 2 + c) + 0.5 * dt * Tdd(j * 2 + c);
     double wext = 0, wreact = 0;
-    for (LocalId k = le * position_values; k < (le + 1) * position_values; ++k) {
+    const double* f0 = fe0_slot(le) >= 0 ? &fe0(fe0_slot(le) * position_values) : nullptr;
+    for (int j = 0; j < position_values; ++j) {
+      const LocalId k = le * position_values + j;
       const double dx = x(k) - x0(k);
-      wext += 0.5 * (fe0(k) + fe(k)) * dx;
-      wreact += 0.5 * (R0(k) + R(k)) * dx;
+      wext += 0.5 * ((f0 ? f0[j] : 0.0) + fe(k)) * dx;
+      wreact += 0.5 * (R0[j] + R(k)) * dx;
     }
     if (director_loads)  // the work of the edge couples on the directors
       for (LocalId k = le * director_values; k < (le + 1) * director_values; ++k)

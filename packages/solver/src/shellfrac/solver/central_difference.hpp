@@ -2,7 +2,7 @@
 /// \file central_difference.hpp
 /// Explicit central differences in time (paper eqs. 47-50 and Algorithm 1; docs/theory.md §7): Newmark with
 /// gamma = 1/2 for positions and for the material director rates, the exponential-map update of the directors,
-/// and the constraints, loads, plasticity commit and fracture checks of each step, as named phases.
+/// and the constraints, loads, plastic work and fracture checks of each step, as named phases.
 #include <vector>
 
 #include "shellfrac/core/types.hpp"
@@ -43,7 +43,7 @@ class CentralDifference {
  private:
   void remember_step_start(const ShellState& s);
   void predict(ShellState& s, double dt, double t1);
-  void commit_plasticity(ShellState& s) const;
+  void book_plastic_work(ShellState& s) const;
   void correct(ShellState& s, double dt, double t1);
   void check_finite(const ShellState& s) const;
   void relax(ShellState& s);
@@ -61,7 +61,11 @@ class CentralDifference {
   double kinetic_before_ = 0;  // the global kinetic energy after the previous step (static relaxation)
   bool relaxed_ = false;
   double residual_;
-  PositionRows x_start_, fext_start_, reaction_start_;  // positions, loads and reactions at t_n (work accounts)
+  // At t_n, for the work accounts: the positions, and the external forces of the elements loaded at t_n only
+  // (fext_start_slot_[le]: the row of owned element le in fext_start_, -1 if its forces were all zero). The
+  // reactions at t_n need no copy: the corrector reads them before it overwrites them.
+  PositionRows x_start_, fext_start_;
+  std::vector<int> fext_start_slot_;
   DirectorRows t_start_, gext_start_;                   // directors and director loads at t_n (edge moments)
   RateRows director_rate_predicted_;  // T-dot + dt/2 T-ddot (eq. 48)
   std::vector<double> programs_u_, programs_v_, programs_a_;  // the conditions' programs at the kernel's time

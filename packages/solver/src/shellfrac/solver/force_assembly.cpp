@@ -74,7 +74,6 @@ ForceAssembly::ForceAssembly(const ShellModel& model, bool edge_tractions, Phase
   flux_.assign(model.overlap);
   if (edge_tractions) edge_tractions_.assign(model.overlap, disc::EdgeTractions{});
   interface_force_.assign(static_cast<LocalId>(model.dm.interfaces().size()));
-  plastic_trial_.assign(model.any_plastic ? model.owned * nq : 0, materials::PlasticState{});
   plastic_work_increment_.assign(model.owned, 0.0), return_failed_.assign(model.owned, 0);
 }
 
@@ -106,11 +105,11 @@ void ForceAssembly::element_kernel(ShellState& s) {
   const bool edge_tractions = !edge_tractions_.empty();
   const auto rp = kernel_view(model_.element_refs);
   const auto lp = kernel_view(model_.lifted);
-  const auto sp = kernel_view(model_.elastic);
-  const auto psp = kernel_view(model_.plastic);
-  const auto plp = kernel_view(model_.is_plastic);
-  const auto pold = kernel_view(std::as_const(s.plastic));
-  const auto pnew = kernel_view(plastic_trial_);
+  const auto block = kernel_view(model_.dm.element_blocks());
+  const auto sp = kernel_view(model_.block_elastic);
+  const auto psp = kernel_view(model_.block_plastic);
+  const auto plp = kernel_view(model_.block_is_plastic);
+  const auto plastic = kernel_view(s.plastic);
   const auto pwp = kernel_view(plastic_work_increment_);
   const auto failp = kernel_view(return_failed_);
   const NeighborViews nb(model_.dm);
@@ -120,15 +119,17 @@ void ForceAssembly::element_kernel(ShellState& s) {
     element_inputs(nb, xp, tp, lp(le), le, xe, te, lf, xn, tn);
     disc::EdgeTractions* edge = edge_tractions ? &etp(le) : nullptr;
     const disc::DgElementRef& R = rp(le);
-    if (plp(le)) {
-      // Resultant plasticity: the return map at area point q from the committed state to the trial state.
-      const materials::PlasticSection ps = psp(le);
+    const int blk = block(le);
+    if (plp(blk)) {
+      // Resultant plasticity: the return map at area point q from the state of the last step to the new one,
+      // in place (each element reads and writes only its own points).
+      const materials::PlasticSection ps = psp(blk);
       int failed = 0;
       double work = 0;
       auto law = [&](int q, const double eps[3], const double gam[2], const double rho[3], double N[3], double Q[2],
                      double M[3]) {
-        materials::PlasticState& st = pnew(le * nq + q);
-        const auto r = materials::resultant_return_map(ps, eps, gam, rho, pold(le * nq + q), st, N, Q, M);
+        materials::PlasticState& st = plastic(le * nq + q);
+        const auto r = materials::resultant_return_map(ps, eps, gam, rho, st, st, N, Q, M);
         work += R.wj0[q] * r.plastic_work;
         failed |= r.converged ? 0 : 1;
         return materials::elastic_energy(ps.elastic, eps, gam, rho, st.eps_p, st.gam_p, st.rho_p);
@@ -136,7 +137,7 @@ void ForceAssembly::element_kernel(ShellState& s) {
       ep(le) = disc::dg_element_forces(R, xe, te, lf, xn, tn, law, fe, ge, fk, gk, edge);
       pwp(le) = work, failp(le) = failed;
     } else {
-      const materials::ElasticSection sc = sp(le);
+      const materials::ElasticSection sc = sp(blk);
       auto law = [&sc](int, const double eps[3], const double gam[2], const double rho[3], double N[3], double Q[2],
                        double M[3]) {
         materials::elastic_resultants(sc, eps, gam, rho, N, Q, M);
@@ -232,8 +233,7 @@ void ForceAssembly::element_strains(const ShellState& s, LocalId le, PointStrain
 
 double ForceAssembly::bytes() const {
   return sizeof(double) * double(flux_.size() + interface_force_.size() + plastic_work_increment_.size()) +
-         sizeof(disc::EdgeTractions) * double(edge_tractions_.size()) +
-         sizeof(materials::PlasticState) * double(plastic_trial_.size()) + exchange_.bytes();
+         sizeof(disc::EdgeTractions) * double(edge_tractions_.size()) + exchange_.bytes();
 }
 
 }  // namespace shellfrac::solver

@@ -3,7 +3,7 @@
 /// Internal forces of the current state (docs/theory.md §5.4-5.5, §9.4; paper eqs. 41-44, 53-56), in four
 /// phases that never add a number across ranks:
 ///   1. element kernel over the owned elements: DG derivatives, the point law at each area point (elastic, or
-///      the plastic return map from the committed state into a trial state), the element's own forces, its
+///      the plastic return map, which updates the plastic state in place), the element's own forces, its
 ///      lifting fluxes for its neighbours and (with fracture) its projected edge tractions;
 ///   2. ghost exchange of the fluxes and edge tractions;
 ///   3. interface kernel over every local interface: penalty forces of intact interfaces, the cohesive law
@@ -38,8 +38,9 @@ class ForceAssembly {
   /// Copies the owned positions and directors of `s` into the ghost rows of the ranks that hold them. Collective.
   void exchange_state(ShellState& s);
   /// Internal forces, strain and interface energies of the current state (ghosts current). Writes
-  /// s.internal_force, s.director_force, s.strain_energy and the interface rows of s, and the plastic trial
-  /// state below. `cohesive`: the cohesive law of each local interface (used where s.mode != intact).
+  /// s.internal_force, s.director_force, s.strain_energy, the interface rows of s and the plastic state
+  /// s.plastic (the return map from the last state: call once per new configuration), and the plastic work
+  /// increments below. `cohesive`: the cohesive law of each local interface (used where s.mode != intact).
   /// Collective (the flux exchange).
   void compute_forces(ShellState& s, const std::vector<materials::CohesiveParams>& cohesive);
   /// Strains at the area points of owned element le in the current state with its current lifted edges (the
@@ -48,12 +49,11 @@ class ForceAssembly {
 
   /// Projected edge tractions of every overlap element from the last compute_forces (fracture runs only).
   const std::vector<disc::EdgeTractions>& edge_tractions() const { return edge_tractions_; }
-  /// Plastic state at the area points after the last element kernel (the trial of the step), its plastic work
-  /// per element, and whether the return map of an element reached its iteration limit.
-  std::vector<materials::PlasticState>& plastic_trial() { return plastic_trial_; }
+  /// The plastic work per element of the last element kernel, and whether the return map of an element reached
+  /// its iteration limit.
   const std::vector<double>& plastic_work_increment() const { return plastic_work_increment_; }
   const std::vector<int>& return_failed() const { return return_failed_; }
-  /// Bytes of the force buffers (fluxes, edge tractions, interface forces, plastic trial, transfer buffers).
+  /// Bytes of the force buffers (fluxes, edge tractions, interface forces, transfer buffers).
   double bytes() const;
 
  private:
@@ -66,7 +66,6 @@ class ForceAssembly {
   Rows<3, 15> flux_;  ///< overlap: per local edge, the lifting flux on the neighbour's 3 position + 2 director nodes
   std::vector<disc::EdgeTractions> edge_tractions_;  ///< overlap (fracture runs)
   Rows<2, 15> interface_force_;  ///< per local interface and side: forces on the side's 3 position + 2 director nodes
-  std::vector<materials::PlasticState> plastic_trial_;
   std::vector<double> plastic_work_increment_;
   std::vector<int> return_failed_;
   GhostExchange exchange_;

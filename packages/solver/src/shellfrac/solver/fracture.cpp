@@ -108,8 +108,8 @@ double Fracture::element_energy(const ShellState& s, const ShellModel& model, co
   const double zero[3] = {0, 0, 0};
   double energy = 0;
   for (int q = 0; q < disc::num_area_points; ++q) {
-    const materials::PlasticState* st = model.is_plastic[le] ? &s.plastic[le * disc::num_area_points + q] : nullptr;
-    energy += p[q].weight * materials::elastic_energy(model.elastic[le], p[q].eps, p[q].gam, p[q].rho,
+    const materials::PlasticState* st = model.is_plastic(le) ? &s.plastic[le * disc::num_area_points + q] : nullptr;
+    energy += p[q].weight * materials::elastic_energy(model.elastic(le), p[q].eps, p[q].gam, p[q].rho,
                                                       st ? st->eps_p : zero, st ? st->gam_p : zero,
                                                       st ? st->rho_p : zero);
   }

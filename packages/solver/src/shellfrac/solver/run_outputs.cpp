@@ -199,14 +199,13 @@ void RunOutputs::write_frame(bool fragment_rows) {
       row.insert(row.begin(), dyn.time());
       fragments_->write_row(row);
     }
-  std::vector<std::vector<Vec3>> nodal(3);
+  // One nodal component at a time: a frame never holds a copy of the nodal state.
+  const auto nodal = [&](std::size_t v, int c, double* out) { dyn.nodal_field_component(nodal_written_[v], c, out); };
   std::vector<std::vector<double>> fields;
-  dyn.nodal_fields(nodal[0], nodal[1], nodal[2]);
   dyn.element_fields(fields);
   std::vector<std::vector<double>> element = element_constant_;
   element.insert(element.end(), fields.begin(), fields.end());
-  exodus_->write_step(dyn.time(), pick(std::move(nodal), nodal_written_), pick(std::move(element), element_written_),
-                      history_values(nullptr));
+  exodus_->write_step(dyn.time(), nodal, pick(std::move(element), element_written_), history_values(nullptr));
 }
 
 std::vector<double> RunOutputs::history_values(StepRecord* record) {

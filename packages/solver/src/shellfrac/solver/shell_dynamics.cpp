@@ -166,9 +166,9 @@ void ShellDynamics::element_fields(std::vector<std::vector<double>>& fields) con
     PointStrains p[nq];
     s.assembly.element_strains(s.state, le, p);
     for (int q = 0; q < nq; ++q) {
-      const materials::PlasticState* st = model.is_plastic[le] ? &s.state.plastic[le * nq + q] : nullptr;
+      const materials::PlasticState* st = model.is_plastic(le) ? &s.state.plastic[le * nq + q] : nullptr;
       double N[3], Q[2], M[3];
-      materials::elastic_resultants(model.elastic[le], p[q].eps, p[q].gam, p[q].rho, st ? st->eps_p : zero,
+      materials::elastic_resultants(model.elastic(le), p[q].eps, p[q].gam, p[q].rho, st ? st->eps_p : zero,
                                     st ? st->gam_p : zero, st ? st->rho_p : zero, N, Q, M);
       const double w = p[q].weight / area;
       fields[0][le] += w * (st ? st->alpha : 0.0);
@@ -183,20 +183,19 @@ void ShellDynamics::element_fields(std::vector<std::vector<double>>& fields) con
     fields[5][le] = s.fracture.enabled() ? double(s.fracture.fragment_of(le) + 1) : 1.0;
 }
 
-void ShellDynamics::nodal_fields(std::vector<Vec3>& displacement, std::vector<Vec3>& velocity,
-                                 std::vector<Vec3>& director) const {
+void ShellDynamics::nodal_field_component(int field, int c, double* out) const {
   const ShellState& s = impl_->state;
   const ShellModel& model = impl_->model;
-  displacement.resize(model.owned * 6), velocity.resize(model.owned * 6), director.resize(model.owned * 6);
+  SHELLFRAC_REQUIRE(field >= 0 && field < 3 && c >= 0 && c < 3, "nodal field " << field << ", component " << c);
   for (LocalId le = 0; le < model.owned; ++le)
-    for (int A = 0; A < 6; ++A)
-      for (int c = 0; c < 3; ++c) {
-        displacement[le * 6 + A][c] = s.x.at(le, A)[c] - model.X.at(le, A)[c];
-        velocity[le * 6 + A][c] = s.v.at(le, A)[c];
-        // P1 directors: a mid-side node shows the mean of its edge's vertex directors (t_h is linear).
-        director[le * 6 + A][c] = A < 3 ? s.t.at(le, A)[c]
-                                        : 0.5 * (s.t.at(le, disc::edge_node(A - 3, 0))[c] +
-                                                 s.t.at(le, disc::edge_node(A - 3, 1))[c]);
+    for (int A = 0; A < 6; ++A, ++out)
+      if (field == 0) {
+        *out = s.x.at(le, A)[c] - model.X.at(le, A)[c];
+      } else if (field == 1) {
+        *out = s.v.at(le, A)[c];
+      } else {  // P1 directors: a mid-side node shows the mean of its edge's vertex directors (t_h is linear)
+        *out = A < 3 ? s.t.at(le, A)[c]
+                     : 0.5 * (s.t.at(le, disc::edge_node(A - 3, 0))[c] + s.t.at(le, disc::edge_node(A - 3, 1))[c]);
       }
 }
 

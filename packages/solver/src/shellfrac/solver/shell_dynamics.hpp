@@ -90,9 +90,10 @@ class ShellDynamics {
   std::vector<std::vector<double>> crack_events();
   /// Column names of crack_events() rows.
   static std::vector<std::string> crack_event_columns();
-  /// Owned DG nodal fields, element-major as DistributedMesh::node_coords: displacement, velocity, director
-  /// (P1: mid-side nodes show the mean of their edge's vertex directors).
-  void nodal_fields(std::vector<Vec3>& displacement, std::vector<Vec3>& velocity, std::vector<Vec3>& director) const;
+  /// Component c of an owned DG nodal field at every owned node, element-major as DistributedMesh::node_coords,
+  /// into out (6 values per owned element). field indexes nodal_result_names(): the displacement, the velocity or
+  /// the director (P1: a mid-side node shows the mean of its edge's vertex directors).
+  void nodal_field_component(int field, int c, double* out) const;
 
   /// The state and the model, for tests and diagnostics (read only).
   const ShellState& state() const;

@@ -137,17 +137,18 @@ ShellModel::ShellModel(const decomposition::DistributedMesh& d, const Deck& deck
   for (LocalId le = 0; le < overlap; ++le)
     for (int A = 0; A < 6; ++A)
       for (int c = 0; c < 3; ++c) X.at(le, A)[c] = dm.node_coords(le, A)[c];
-  // Point laws of the owned elements.
-  elastic.resize(owned), plastic.resize(owned), is_plastic.assign(owned, 0);
-  for (LocalId le = 0; le < owned; ++le) {
-    const BlockSection& sc = sections.at(dm.element_block(le));
-    const auto& m = sc.material;
-    elastic[le] = materials::make_elastic_section(m.youngs_modulus, m.poissons_ratio, sc.thickness);
+  // Point laws of the blocks.
+  block_elastic.resize(sections.size()), block_plastic.resize(sections.size()), block_is_plastic.assign(sections.size(), 0);
+  for (std::size_t b = 0; b < sections.size(); ++b) {
+    const auto& m = sections[b].material;
+    const double h = sections[b].thickness;
+    block_elastic[b] = materials::make_elastic_section(m.youngs_modulus, m.poissons_ratio, h);
     if (!m.plastic()) continue;
-    is_plastic[le] = 1, any_plastic = true;
-    plastic[le] = materials::make_plastic_section(m.youngs_modulus, m.poissons_ratio, sc.thickness, m.yield_stress,
-                                                  m.hardening_modulus, m.shear_in_yield);
+    block_is_plastic[b] = 1;
+    block_plastic[b] = materials::make_plastic_section(m.youngs_modulus, m.poissons_ratio, h, m.yield_stress,
+                                                       m.hardening_modulus, m.shear_in_yield);
   }
+  for (LocalId le = 0; le < owned; ++le) any_plastic = any_plastic || is_plastic(le);
   any_plastic = parallel::any(any_plastic, dm.comm());  // the same on every rank (collectives depend on it)
   // Non-manifold interfaces are penalized but not lifted (a kink has no single neighbour).
   std::set<std::pair<LocalId, int>> not_lifted;
@@ -228,12 +229,13 @@ void ShellModel::build_interfaces(const Deck& deck) {
   }
 }
 
+const materials::ElasticSection& ShellModel::elastic(LocalId le) const { return block_elastic[dm.element_block(le)]; }
+bool ShellModel::is_plastic(LocalId le) const { return block_is_plastic[dm.element_block(le)] != 0; }
 
 double ShellModel::bytes() const {
   return sizeof(disc::DgElementRef) * double(element_refs.size()) +
          sizeof(double) * double(X.size() + mass.size() + inertia.size()) +
-         sizeof(disc::DgInterfaceRef) * double(interface_refs.size()) +
-         sizeof(materials::PlasticSection) * double(plastic.size());
+         sizeof(disc::DgInterfaceRef) * double(interface_refs.size());
 }
 
 }  // namespace shellfrac::solver

@@ -65,9 +65,10 @@ struct ShellModel {
   PositionRows X;                            ///< reference positions (overlap)
   std::vector<disc::DgElementRef> element_refs;  ///< owned elements
   std::vector<std::array<bool, 3>> lifted;   ///< owned: the jump over edge k is lifted (an intact manifold edge)
-  std::vector<materials::ElasticSection> elastic;  ///< owned elements
-  std::vector<materials::PlasticSection> plastic;  ///< owned elements (used where is_plastic)
-  std::vector<char> is_plastic;              ///< owned elements of a Resultant Plasticity material
+  // The point laws' section data, by block index (an element's block: dm.element_block(le)).
+  std::vector<materials::ElasticSection> block_elastic;
+  std::vector<materials::PlasticSection> block_plastic;  ///< used where block_is_plastic
+  std::vector<char> block_is_plastic;        ///< the block's material is Resultant Plasticity
   bool any_plastic = false;                  ///< some element of the mesh is plastic (the same on every rank)
   Rows<position_nodes, 1> mass;              ///< HRZ lumped mass per position node (owned)
   Rows<director_nodes, 1> inertia;           ///< lumped rotary inertia per director node (owned)
@@ -80,6 +81,9 @@ struct ShellModel {
   /// Per owned element: its interfaces (local interface, side), in increasing interface id.
   IncidentInterfaces incident;
 
+  /// The elastic section of owned element le, and whether its material is plastic.
+  const materials::ElasticSection& elastic(LocalId le) const;
+  bool is_plastic(LocalId le) const;
   /// Kinetic energy of owned element le: 1/2 m |v|^2 over its position nodes plus 1/2 I |T-dot|^2 over its
   /// director nodes (the history's kinetic_energy, docs/theory.md §11).
   double element_kinetic(const ShellState& s, LocalId le) const {
