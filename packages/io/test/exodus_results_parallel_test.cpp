@@ -4,16 +4,14 @@
 // formulas the ranks write; (2) a single-rank write of the whole mesh by rank 0 (MPI_COMM_SELF), which the
 // merged per-rank set must equal exactly; (3) the naming rule `path.<np>.<rank>` spelled out by hand; (4) the
 // Nemesis records of every per-rank file (docs/output.md "Nemesis records") against counts of the test mesh and
-// of each rank's chunk written out by hand, read back with the Exodus API; shellfrac_exojoin (run by rank 0 with
-// std::system) joins the set into one file without them.
+// of each rank's chunk written out by hand, read back with the Exodus API; the join (write_results, what
+// shellfrac_exojoin calls) writes one file without them.
 #include <exodusII.h>
 #include <gtest/gtest.h>
 #include <mpi.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cstdint>
-#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <numeric>
@@ -23,10 +21,6 @@
 
 #include "results_test_util.hpp"
 #include "shellfrac/core/error.hpp"
-
-#ifndef SHELLFRAC_EXOJOIN
-#error "SHELLFRAC_EXOJOIN (path of shellfrac_exojoin) must be defined"
-#endif
 
 namespace shellfrac::io {
 namespace {
@@ -150,10 +144,9 @@ void expect_no_nemesis(const std::string& file) {
 template <class Begin>
 void run_case(const std::string& name, int npe, Begin begin, const std::map<int, Counts>& rank_elements) {
   const std::string stem = "results_" + name + "_p" + std::to_string(npe) + "_np" + std::to_string(np());
-  const std::string base = stem + ".exo", ref = stem + "_ref.exo", joined = stem + "_joined.exo",
-                    tool_joined = stem + "_exojoin.exo";
+  const std::string base = stem + ".exo", ref = stem + "_ref.exo", joined = stem + "_joined.exo";
   if (rank() == 0)
-    for (const auto& f : {base, ref, joined, tool_joined}) test::remove_results(f);
+    for (const auto& f : {base, ref, joined}) test::remove_results(f);
   MPI_Barrier(MPI_COMM_WORLD);
   {
     const auto l = test::layout(npe, begin(rank()), begin(rank() + 1));
@@ -204,13 +197,6 @@ void run_case(const std::string& name, int npe, Begin begin, const std::map<int,
     const ExodusResults j = read_results(joined);
     EXPECT_EQ(j.num_files, 1);
     test::expect_same(j, merged);
-    // The same with the tool.
-    const std::string log = tool_joined + ".log";
-    const int rc =
-        std::system((std::string(SHELLFRAC_EXOJOIN) + " " + base + " " + tool_joined + " > " + log + " 2>&1").c_str());
-    EXPECT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 0) << "shellfrac_exojoin failed, see " << log;
-    expect_no_nemesis(tool_joined);
-    test::expect_same(read_results(tool_joined), merged);
   } else {
     EXPECT_TRUE(find_rank_files(base).empty());
   }
