@@ -12,11 +12,13 @@
 #include <limits>
 #include <map>
 #include <new>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <tuple>
 
 #include "shellfrac/core/error.hpp"
+#include "shellfrac/core/parallel.hpp"
 #include "shellfrac/exodus/exodus_api.hpp"
 
 namespace shellfrac::io {
@@ -36,6 +38,16 @@ std::string pad(int value, std::size_t width) {
   return std::string(width > s.size() ? width - s.size() : 0, '0') + s;
 }
 
+/// The Nemesis I global information of one file of a per-rank set (docs/output.md "Nemesis records"): the totals
+/// of the set, summed over its ranks, and the rank the file belongs to.
+struct NemesisGlobal {
+  int num_ranks = 1, rank = 0;
+  /// Real DG nodes (placeholder nodes not counted) and elements.
+  std::int64_t num_nodes = 0, num_elements = 0;
+  /// Elements per block (block_ids order), entries per set (node_sets, side_sets order).
+  std::vector<std::int64_t> block_elements, node_set_entries, side_set_entries;
+};
+
 /// Everything one file holds apart from the time steps. element_block[i] indexes block_ids/block_names.
 struct FileLayout {
   std::string title;
@@ -50,6 +62,7 @@ struct FileLayout {
   std::vector<std::string> global_names;  ///< global variables (one value per step)
   std::vector<std::string> info;
   std::vector<ResultsSet> node_sets, side_sets;
+  std::optional<NemesisGlobal> nemesis;  ///< the per-rank files of a set only (not a 1-rank file, not a join)
 };
 
 /// Exodus side number of local edge k of a shell triangle (sides 1 and 2 are its faces).
@@ -110,6 +123,79 @@ void put_sets(int id, const FileLayout& l, const std::vector<std::int64_t>& file
   if (!names.empty()) SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_SIDE_SET, names), path);
 }
 
+/// The Nemesis I records of a per-rank file (docs/output.md "Nemesis records"): the set's global counts, block and
+/// set totals, and this rank's load-balance parameters and maps. A DG node belongs to one element, so every node
+/// and element of the file is internal: no border or external nodes, no border elements, no communication maps.
+/// The internal maps hold local 1-based indices (the Nemesis convention for a parallel file); the placeholder node
+/// of an empty rank is not counted. Files are created with the 64-bit integer API: every array is int64_t. `n` is
+/// a copy because Exodus 6.02 takes non-const arrays.
+void put_nemesis(int id, NemesisGlobal n, const FileLayout& l, const std::string& path) {
+  const auto num_elements = static_cast<std::int64_t>(l.element_gids.size());
+  const std::int64_t num_nodes = num_elements * l.nodes_per_element;
+  char parallel_file[] = "p";  // one rank's part of a set ('s' would be a whole decomposition in one file)
+  SHELLFRAC_EXO_CHECK(ex_put_init_info(id, n.num_ranks, 1, parallel_file), path << ": Nemesis information");
+  SHELLFRAC_EXO_CHECK(ex_put_init_global(id, n.num_nodes, n.num_elements, std::int64_t(l.block_ids.size()),
+                                         std::int64_t(l.node_sets.size()), std::int64_t(l.side_sets.size())),
+                      path << ": Nemesis global counts");
+  SHELLFRAC_EXO_CHECK(ex_put_loadbal_param(id, num_nodes, 0, 0, num_elements, 0, 0, 0, n.rank),
+                      path << ": Nemesis load-balance parameters");
+  std::vector<std::int64_t> ids(l.block_ids.begin(), l.block_ids.end());
+  SHELLFRAC_EXO_CHECK(ex_put_eb_info_global(id, ids.data(), n.block_elements.data()), path << ": Nemesis blocks");
+  // The sets are written without distribution factors (put_sets).
+  if (!l.node_sets.empty()) {
+    ids.clear();
+    for (const auto& set : l.node_sets) ids.push_back(set.id);
+    std::vector<std::int64_t> factors(ids.size(), 0);
+    SHELLFRAC_EXO_CHECK(ex_put_ns_param_global(id, ids.data(), n.node_set_entries.data(), factors.data()),
+                        path << ": Nemesis node sets");
+  }
+  if (!l.side_sets.empty()) {
+    ids.clear();
+    for (const auto& set : l.side_sets) ids.push_back(set.id);
+    std::vector<std::int64_t> factors(ids.size(), 0);
+    SHELLFRAC_EXO_CHECK(ex_put_ss_param_global(id, ids.data(), n.side_set_entries.data(), factors.data()),
+                        path << ": Nemesis side sets");
+  }
+  std::vector<std::int64_t> node_map(static_cast<std::size_t>(num_nodes)), elem_map(l.element_gids.size());
+  for (std::size_t k = 0; k < node_map.size(); ++k) node_map[k] = static_cast<std::int64_t>(k) + 1;
+  for (std::size_t k = 0; k < elem_map.size(); ++k) elem_map[k] = static_cast<std::int64_t>(k) + 1;
+  SHELLFRAC_EXO_CHECK(ex_put_processor_node_maps(id, node_map.data(), nullptr, nullptr, n.rank),
+                      path << ": Nemesis node map");
+  SHELLFRAC_EXO_CHECK(ex_put_processor_elem_maps(id, elem_map.data(), nullptr, n.rank),
+                      path << ": Nemesis element map");
+}
+
+/// The Nemesis global information of this rank's file of the set written over `comm`: element counts per block and
+/// entry counts per set summed over the ranks (one all-gather, the same on every rank). Collective. Throws Error
+/// naming `path` if the ranks disagree on the number of blocks or sets.
+NemesisGlobal gather_nemesis_global(const ResultsLayout& l, MPI_Comm comm, const std::string& path) {
+  NemesisGlobal n;
+  n.num_ranks = parallel::size(comm);
+  n.rank = parallel::rank(comm);
+  // This rank's counts: [elements, elements per block..., entries per node set..., entries per side set...].
+  std::vector<std::int64_t> local(1 + l.block_ids.size(), 0);
+  local[0] = static_cast<std::int64_t>(l.element_gids.size());
+  for (int b : l.element_block)
+    if (b >= 0 && b < static_cast<int>(l.block_ids.size())) ++local[1 + b];  // FileWriter::open reports the others
+  for (const auto& set : l.node_sets) local.push_back(static_cast<std::int64_t>(set.entries.size()));
+  for (const auto& set : l.side_sets) local.push_back(static_cast<std::int64_t>(set.entries.size()));
+  const std::vector<std::int64_t> all = parallel::all_gather(local, comm);
+  SHELLFRAC_REQUIRE(all.size() == local.size() * static_cast<std::size_t>(n.num_ranks),
+                    path << ": the ranks disagree on the number of element blocks or sets");
+  std::vector<std::int64_t> total(local.size(), 0);
+  for (std::size_t k = 0; k < all.size(); ++k) total[k % local.size()] += all[k];
+  n.num_elements = total[0];
+  n.num_nodes = total[0] * l.nodes_per_element;
+  const auto part = [&](std::size_t first, std::size_t count) {
+    return std::vector<std::int64_t>(total.begin() + first, total.begin() + first + count);
+  };
+  const std::size_t num_blocks = l.block_ids.size(), num_node_sets = l.node_sets.size();
+  n.block_elements = part(1, num_blocks);
+  n.node_set_entries = part(1 + num_blocks, num_node_sets);
+  n.side_set_entries = part(1 + num_blocks + num_node_sets, l.side_sets.size());
+  return n;
+}
+
 /// Writes one DG results file: the mesh part on open(), then one time step per put_step(). Used by both the
 /// per-rank writer and write_results (the join), so both produce the same file structure.
 class FileWriter {
@@ -167,6 +253,7 @@ class FileWriter {
     p.num_node_sets = static_cast<std::int64_t>(l.node_sets.size());
     p.num_side_sets = static_cast<std::int64_t>(l.side_sets.size());
     SHELLFRAC_EXO_CHECK(ex_put_init_ext(id, &p), path);
+    if (l.nemesis) put_nemesis(id, *l.nemesis, l, path);
     SHELLFRAC_EXO_CHECK(exodus::put_info(id, l.info), path);
     SHELLFRAC_EXO_CHECK(put_qa(id), path << ": QA record");
     SHELLFRAC_EXO_CHECK(put_coordinate_names(id), path << ": coordinate names");
@@ -698,6 +785,12 @@ ExodusResultsWriter::ExodusResultsWriter(const std::string& path, const ResultsL
   std::exception_ptr failure;
   try {
     FileLayout l;
+    if (np > 1) {
+      // Collective, before anything that can fail on one rank only. A set without any element gets no Nemesis
+      // records: there is nothing to describe, and Exodus stores the global counts as netCDF dimensions (not 0).
+      NemesisGlobal nemesis = gather_nemesis_global(layout, comm, file_);
+      if (nemesis.num_elements > 0) l.nemesis = std::move(nemesis);
+    }
     l.title = layout.title;
     l.nodes_per_element = layout.nodes_per_element;
     l.element_gids = layout.element_gids;

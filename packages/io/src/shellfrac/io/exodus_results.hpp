@@ -10,7 +10,9 @@
 ///    automatically); element scalars as element variables in every block.
 ///  * Parallel: np == 1 writes `path`; np > 1 writes one file per rank `path.<np>.<rank>` (Nemesis naming,
 ///    rank zero-padded to the width of np, e.g. run.exo.3.0, run.exo.12.03), which ParaView opens as one data set;
-///    shellfrac_exojoin merges a set into one file.
+///    shellfrac_exojoin merges a set into one file. Each file of a set carries the Nemesis I global information
+///    (the set's totals, and the rank's load-balance parameters: every node and element internal, no
+///    communication maps); a 1-rank file and a joined file carry none.
 ///  * The mesh's node sets and side sets (and the deck's regions) are written on the DG copies: a node set holds
 ///    every DG copy of its nodes, a side set the element edges as shell edge sides 3..5 (edge k -> side k + 3).
 ///    Every file of a set declares every set, possibly empty on a rank.
