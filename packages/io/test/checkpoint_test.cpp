@@ -25,7 +25,7 @@ using namespace shellfrac;
 namespace {
 
 constexpr int width = 5;
-constexpr GlobalId num_ids = 10000;  // more than two HDF5 chunks of 4096 rows
+constexpr GlobalId num_ids = 40000;  // more than two blocks of 4 HDF5 chunks of 4096 rows (what rank 0 writes at a time)
 
 double value(GlobalId id, int c) { return std::sin(double(id) * 0.37 + c) * 1e3 + double(id); }
 

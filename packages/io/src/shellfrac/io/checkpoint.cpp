@@ -4,8 +4,12 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <numeric>
+#include <optional>
+#include <queue>
+#include <utility>
 
 #include "shellfrac/core/digest.hpp"
 #include "shellfrac/core/error.hpp"
@@ -19,6 +23,8 @@ constexpr const char* format_tag = "shellfrac checkpoint 5";
 
 /// Rows per HDF5 chunk of a table (chunked storage carries the Fletcher32 checksum of every chunk).
 constexpr hsize_t rows_per_chunk = 4096;
+/// Rows of a table that rank 0 gathers and writes at a time (whole chunks): what bounds its memory.
+constexpr std::size_t rows_per_block = 4 * rows_per_chunk;
 
 /// Closes an HDF5 handle at scope exit.
 struct Handle {
@@ -29,6 +35,13 @@ struct Handle {
     if (id >= 0) close(id);
   }
   Handle(Handle&& o) noexcept : id(o.id), close(o.close) { o.id = -1; }
+  Handle& operator=(Handle&& o) noexcept {
+    if (this != &o) {
+      if (id >= 0) close(id);
+      id = o.id, close = o.close, o.id = -1;
+    }
+    return *this;
+  }
   Handle(const Handle&) = delete;
   Handle& operator=(const Handle&) = delete;
 };
@@ -170,6 +183,7 @@ class FileWriter {
   }
   ~FileWriter() {  // not finished: an error; the temporary file goes
     if (file_.id < 0) return;
+    values_ = Handle(-1, H5Dclose);
     H5Gclose(tables_.id), tables_.id = -1;
     H5Fclose(file_.id), file_.id = -1;
     std::remove(tmp_.c_str());
@@ -177,9 +191,10 @@ class FileWriter {
   FileWriter(const FileWriter&) = delete;
   FileWriter& operator=(const FileWriter&) = delete;
 
-  /// A table: `ids` sorted and unique; row(r) points to the width values of its row r.
-  template <class Row>
-  void table(const std::string& name, int width, const std::vector<GlobalId>& ids, const Row& row) {
+  /// Starts a table: its ids (sorted and unique) are written; its values follow by write_rows, in id order.
+  void begin_table(const std::string& name, int width, const std::vector<GlobalId>& ids) {
+    values_ = Handle(-1, H5Dclose);
+    table_name_ = name, width_ = width, rows_written_ = 0;
     Handle g(H5Gcreate2(tables_.id, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
     check(g.id >= 0, tmp_, "cannot create table " + name);
     checksum_.add_table(name, width, ids);
@@ -194,28 +209,27 @@ class FileWriter {
     }
     Handle space(H5Screate_simple(2, dims, nullptr), H5Sclose);
     const Handle dcpl = dataset_properties(2, dims);
-    Handle ds(H5Dcreate2(g.id, "values", H5T_NATIVE_DOUBLE, space.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT), H5Dclose);
-    check(ds.id >= 0, tmp_, "cannot write table " + name);
-    if (width == 0) return;
-    // One chunk of rows at a time, in id order: no sorted copy of the table.
-    std::vector<double> block;
-    for (hsize_t first = 0; first < rows; first += rows_per_chunk) {
-      const hsize_t n = std::min(rows_per_chunk, rows - first);
-      block.resize(std::size_t(n) * std::size_t(width));
-      for (hsize_t r = 0; r < n; ++r)
-        std::copy_n(row(std::size_t(first + r)), width, block.begin() + std::ptrdiff_t(r * std::size_t(width)));
-      checksum_.add_rows(block.data(), n, width);
-      const hsize_t start[2] = {first, 0}, count[2] = {n, hsize_t(width)};
-      Handle file_space(H5Dget_space(ds.id), H5Sclose);
-      Handle memory(H5Screate_simple(2, count, nullptr), H5Sclose);
-      check(H5Sselect_hyperslab(file_space.id, H5S_SELECT_SET, start, nullptr, count, nullptr) >= 0 &&
-                H5Dwrite(ds.id, H5T_NATIVE_DOUBLE, memory.id, file_space.id, H5P_DEFAULT, block.data()) >= 0,
-            tmp_, "cannot write table " + name);
-    }
+    values_ = Handle(H5Dcreate2(g.id, "values", H5T_NATIVE_DOUBLE, space.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT),
+                     H5Dclose);
+    check(values_.id >= 0, tmp_, "cannot write table " + name);
+  }
+  /// The next `n` rows of the table begun last (n * width values); whole chunks except at the end.
+  void write_rows(const double* values, std::size_t n) {
+    if (width_ == 0 || n == 0) return;
+    for (std::size_t r = 0; r < n; r += rows_per_chunk)
+      checksum_.add_rows(values + r * std::size_t(width_), std::min<std::size_t>(rows_per_chunk, n - r), width_);
+    const hsize_t start[2] = {rows_written_, 0}, count[2] = {n, hsize_t(width_)};
+    Handle file_space(H5Dget_space(values_.id), H5Sclose);
+    Handle memory(H5Screate_simple(2, count, nullptr), H5Sclose);
+    check(H5Sselect_hyperslab(file_space.id, H5S_SELECT_SET, start, nullptr, count, nullptr) >= 0 &&
+              H5Dwrite(values_.id, H5T_NATIVE_DOUBLE, memory.id, file_space.id, H5P_DEFAULT, values) >= 0,
+          tmp_, "cannot write table " + table_name_);
+    rows_written_ += n;
   }
 
   /// The checksum, then flush, close and rename.
   void finish() {
+    values_ = Handle(-1, H5Dclose);
     write_string_attribute(file_.id, "checksum", checksum_.hex(), tmp_);
     H5Gclose(tables_.id), tables_.id = -1;
     check(H5Fflush(file_.id, H5F_SCOPE_GLOBAL) >= 0, tmp_, "cannot flush the checkpoint file");
@@ -228,6 +242,10 @@ class FileWriter {
   std::string path_, tmp_;
   Handle fapl_, file_, tables_;
   Checksum checksum_;
+  Handle values_{-1, H5Dclose};  // the values of the table being written
+  std::string table_name_;
+  int width_ = 0;
+  hsize_t rows_written_ = 0;
 };
 
 /// Reads a checkpoint file on one rank: the header at once, then one table at a time.
@@ -347,6 +365,117 @@ std::vector<T> receive_vector(int from, MPI_Comm comm) {
   return v;
 }
 
+/// One table as a rank gives it: its ids, sorted, and a way to read a range of its rows in that order.
+struct LocalRows {
+  int width = 0;
+  std::vector<GlobalId> ids;
+  std::function<void(std::size_t first, std::size_t count, double* out)> rows;
+};
+
+/// Table `name` of `d`: a source as it is, a given table (ids in any order) through its sorting permutation.
+LocalRows local_rows(const CheckpointData& d, const std::string& name) {
+  const auto source = d.table_sources.find(name);
+  if (source != d.table_sources.end()) return {source->second.width, source->second.ids(), source->second.rows};
+  const CheckpointTable& t = d.tables.at(name);
+  std::vector<std::size_t> order(t.ids.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return t.ids[a] < t.ids[b]; });
+  LocalRows r;
+  r.width = t.width;
+  for (const std::size_t i : order) r.ids.push_back(t.ids[i]);
+  r.rows = [&t, order](std::size_t first, std::size_t count, double* out) {
+    for (std::size_t i = 0; i < count; ++i)
+      std::copy_n(t.values.data() + order[first + i] * std::size_t(t.width), t.width, out + i * std::size_t(t.width));
+  };
+  return r;
+}
+
+// The row requests of a table from rank 0 to rank r: (first, count) of r's rows, answered with their values; a
+// request with count 0 ends the table.
+std::vector<double> request_rows(int r, std::size_t first, std::size_t count, MPI_Comm comm) {
+  const std::uint64_t request[2] = {first, count};
+  MPI_Send(request, 2, MPI_UINT64_T, r, 0, comm);
+  return receive_vector<double>(r, comm);
+}
+void end_row_requests(int r, MPI_Comm comm) {
+  const std::uint64_t request[2] = {0, 0};
+  MPI_Send(request, 2, MPI_UINT64_T, r, 0, comm);
+}
+void serve_row_requests(const LocalRows& t, MPI_Comm comm) {
+  std::vector<double> values;
+  for (;;) {
+    std::uint64_t request[2] = {0, 0};
+    MPI_Recv(request, 2, MPI_UINT64_T, 0, 0, comm, MPI_STATUS_IGNORE);
+    if (request[1] == 0) return;
+    const bool valid = request[0] + request[1] <= t.ids.size();
+    values.assign(valid ? request[1] * std::size_t(t.width) : 0, 0.0);  // rank 0 reports a short answer
+    if (valid) t.rows(request[0], request[1], values.data());
+    send_vector(values, 0, comm);
+  }
+}
+
+/// The ranks' sorted ids of a table merged in id order (an id several ranks give is taken from the lowest of them),
+/// walked a block of rows at a time.
+class RowMerge {
+ public:
+  /// ids[r]: rank r's ids, sorted (an id repeated within a rank is taken once).
+  explicit RowMerge(const std::vector<std::vector<GlobalId>>& ids) : ids_(ids) {
+    restart();
+    std::vector<std::size_t> first, count;
+    for (;;) {
+      const auto& block = next_block(rows_per_block, first, count);
+      if (block.empty()) break;
+      for (const auto& [r, row] : block) sorted_.push_back(ids_[std::size_t(r)][row]);
+    }
+    size_ = sorted_.size();
+    restart();
+  }
+  std::size_t size() const { return size_; }
+  /// The merged ids (once: they are handed over).
+  std::vector<GlobalId> take_sorted_ids() { return std::move(sorted_); }
+  /// The next n rows: (rank, row) of each; first[r] and count[r] the range of rank r's rows the block passes
+  /// (including repeats of a lower rank's ids, not taken).
+  const std::vector<std::pair<int, std::size_t>>& next_block(std::size_t n, std::vector<std::size_t>& first,
+                                                             std::vector<std::size_t>& count) {
+    first = cursor_;
+    block_.clear();
+    while (block_.size() < n && !heads_.empty()) {
+      const auto [id, r] = heads_.top();
+      block_.emplace_back(r, cursor_[std::size_t(r)]);
+      while (!heads_.empty() && heads_.top().first == id) {
+        const int rr = heads_.top().second;
+        heads_.pop();
+        pass(rr, id);
+      }
+    }
+    count.resize(cursor_.size());
+    for (std::size_t r = 0; r < cursor_.size(); ++r) count[r] = cursor_[r] - first[r];
+    return block_;
+  }
+
+ private:
+  void restart() {
+    cursor_.assign(ids_.size(), 0);
+    heads_ = {};
+    for (std::size_t r = 0; r < ids_.size(); ++r)
+      if (!ids_[r].empty()) heads_.emplace(ids_[r][0], int(r));
+  }
+  /// Moves rank r past `id` and queues its next id.
+  void pass(int r, GlobalId id) {
+    const auto& mine = ids_[std::size_t(r)];
+    std::size_t& c = cursor_[std::size_t(r)];
+    while (c < mine.size() && mine[c] == id) ++c;
+    if (c < mine.size()) heads_.emplace(mine[c], r);
+  }
+
+  const std::vector<std::vector<GlobalId>>& ids_;
+  std::vector<std::size_t> cursor_;
+  std::priority_queue<std::pair<GlobalId, int>, std::vector<std::pair<GlobalId, int>>, std::greater<>> heads_;
+  std::vector<std::pair<int, std::size_t>> block_;
+  std::vector<GlobalId> sorted_;
+  std::size_t size_ = 0;
+};
+
 /// The names of the tables and table sources, sorted, the same on every rank (an internal error otherwise).
 /// Collective.
 std::vector<std::string> agreed_table_names(const CheckpointData& local, MPI_Comm comm) {
@@ -368,7 +497,12 @@ std::vector<std::string> agreed_table_names(const CheckpointData& local, MPI_Com
 }  // namespace
 
 CheckpointData built(CheckpointData data) {
-  for (const auto& [name, source] : data.table_sources) data.tables[name] = source();
+  for (const auto& [name, source] : data.table_sources) {
+    CheckpointTable& t = data.tables[name];
+    t.width = source.width, t.ids = source.ids();
+    t.values.resize(t.ids.size() * std::size_t(source.width));
+    source.rows(0, t.ids.size(), t.values.data());
+  }
   data.table_sources.clear();
   return data;
 }
@@ -379,9 +513,10 @@ const double* CheckpointTable::row(GlobalId id) const {
   return values.data() + (it - ids.begin()) * width;
 }
 
-// Rank 0 writes, one table at a time: it receives that table's rows from every rank (in rank order), writes them
-// sorted by id in blocks of rows_per_chunk and frees them before the next table. Only rank 0 ever holds a whole
-// table; the other ranks send their own rows. An error on rank 0 is raised on every rank after the last table.
+// Rank 0 writes, one table at a time and a block of rows_per_block rows at a time: it gathers every rank's ids of the
+// table, merges them (sorted, a row given by two ranks taken from the lower), writes them, then asks each rank for
+// the rows of each block and writes the block. No rank ever holds a table: rank 0 holds the ids and one block,
+// the others build the rows of a block when asked. An error on rank 0 is raised on every rank after the last table.
 void write_checkpoint(const std::string& path, const CheckpointData& local, MPI_Comm comm) {
   const int me = parallel::rank(comm), np = parallel::size(comm);
   const auto names = agreed_table_names(local, comm);
@@ -402,46 +537,62 @@ void write_checkpoint(const std::string& path, const CheckpointData& local, MPI_
   std::unique_ptr<FileWriter> writer;
   attempt([&] { writer = std::make_unique<FileWriter>(path, local, names.size()); });
   for (const auto& name : names) {
-    const auto given = local.tables.find(name);
-    const CheckpointTable built_here = given == local.tables.end() ? local.table_sources.at(name)() : CheckpointTable{};
-    const CheckpointTable& t = given == local.tables.end() ? built_here : given->second;
-    const int width = static_cast<int>(parallel::max(double(t.width), comm));
+    const LocalRows mine = local_rows(local, name);
+    const int width = static_cast<int>(parallel::max(double(mine.width), comm));
     if (me != 0) {
-      send_vector(t.ids, 0, comm), send_vector(t.values, 0, comm);
+      send_vector(std::vector<std::int64_t>{mine.width}, 0, comm), send_vector(mine.ids, 0, comm);
+      serve_row_requests(mine, comm);
       continue;
     }
-    // Rank 0's own rows stay where they are; the other ranks' arrive one rank at a time.
     std::vector<std::vector<GlobalId>> ids(static_cast<std::size_t>(np));
-    std::vector<std::vector<double>> values(static_cast<std::size_t>(np));
-    for (int r = 1; r < np; ++r)
-      ids[std::size_t(r)] = receive_vector<std::int64_t>(r, comm), values[std::size_t(r)] = receive_vector<double>(r, comm);
+    std::vector<int> widths(static_cast<std::size_t>(np), mine.width);
+    ids[0] = mine.ids;
+    for (int r = 1; r < np; ++r) {
+      widths[std::size_t(r)] = static_cast<int>(receive_vector<std::int64_t>(r, comm).at(0));
+      ids[std::size_t(r)] = receive_vector<std::int64_t>(r, comm);
+    }
+    std::optional<RowMerge> merge;
     attempt([&] {
-      const auto ids_of = [&](int r) -> const std::vector<GlobalId>& { return r == 0 ? t.ids : ids[std::size_t(r)]; };
-      const auto values_of = [&](int r) -> const std::vector<double>& {
-        return r == 0 ? t.values : values[std::size_t(r)];
-      };
-      struct Source {
-        GlobalId id;
-        int rank;
-        std::size_t row;
-      };
-      std::vector<Source> rows;
       for (int r = 0; r < np; ++r) {
-        SHELLFRAC_REQUIRE(values_of(r).size() == ids_of(r).size() * std::size_t(width),
-                          "checkpoint table " << name << ": " << values_of(r).size() << " values for "
-                                              << ids_of(r).size() << " rows of " << width << " from rank " << r);
-        for (std::size_t i = 0; i < ids_of(r).size(); ++i) rows.push_back({ids_of(r)[i], r, i});
+        const auto& theirs = ids[std::size_t(r)];
+        SHELLFRAC_REQUIRE(theirs.empty() || widths[std::size_t(r)] == width,
+                          "checkpoint table " << name << ": rows of width " << widths[std::size_t(r)] << " from rank "
+                                              << r << ", " << width << " from another");
+        SHELLFRAC_REQUIRE(std::is_sorted(theirs.begin(), theirs.end()),
+                          "checkpoint table " << name << ": the ids of rank " << r << " are not sorted");
       }
-      // Sorted by id; a row given by two ranks (a shared id) is written once, from the lower rank.
-      std::stable_sort(rows.begin(), rows.end(), [](const Source& a, const Source& b) { return a.id < b.id; });
-      rows.erase(std::unique(rows.begin(), rows.end(), [](const Source& a, const Source& b) { return a.id == b.id; }),
-                 rows.end());
-      std::vector<GlobalId> sorted(rows.size());
-      for (std::size_t i = 0; i < rows.size(); ++i) sorted[i] = rows[i].id;
-      writer->table(name, width, sorted, [&](std::size_t i) {
-        return values_of(rows[i].rank).data() + rows[i].row * std::size_t(width);
-      });
+      merge.emplace(ids);
+      writer->begin_table(name, width, merge->take_sorted_ids());
     });
+    std::vector<double> block;
+    std::vector<std::size_t> first(static_cast<std::size_t>(np)), count(static_cast<std::size_t>(np));
+    std::vector<std::vector<double>> rows(static_cast<std::size_t>(np));
+    for (std::size_t done = 0; kind == 0 && merge && done < merge->size(); done += rows_per_block) {
+      const std::size_t n = std::min(rows_per_block, merge->size() - done);
+      const auto& sources = merge->next_block(n, first, count);  // (rank, row) of each row of the block
+      for (int r = 0; r < np; ++r) {
+        auto& buffer = rows[std::size_t(r)];
+        buffer.resize(count[std::size_t(r)] * std::size_t(width));
+        if (count[std::size_t(r)] == 0) continue;
+        if (r == 0)
+          mine.rows(first[0], count[0], buffer.data());
+        else
+          buffer = request_rows(r, first[std::size_t(r)], count[std::size_t(r)], comm);
+      }
+      attempt([&] {
+        block.resize(n * std::size_t(width));
+        for (std::size_t i = 0; i < n; ++i) {
+          const auto [r, row] = sources[i];
+          const auto& buffer = rows[std::size_t(r)];
+          SHELLFRAC_REQUIRE(buffer.size() == count[std::size_t(r)] * std::size_t(width),
+                            "checkpoint table " << name << ": rank " << r << " sent " << buffer.size() << " values");
+          std::copy_n(buffer.data() + (row - first[std::size_t(r)]) * std::size_t(width), width,
+                      block.data() + i * std::size_t(width));
+        }
+        writer->write_rows(block.data(), n);
+      });
+    }
+    for (int r = 1; r < np; ++r) end_row_requests(r, comm);
   }
   attempt([&] { writer->finish(); });
   writer.reset();

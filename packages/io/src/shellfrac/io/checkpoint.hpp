@@ -10,8 +10,9 @@
 /// chunk size). The file uses the HDF5 1.10 format (checksummed superblock and object headers) and each table
 /// chunk carries a Fletcher32 checksum: a damaged file is refused on reading, never restarted from.
 ///
-/// Memory: rank 0 writes and reads one table at a time, so it holds at most one whole table; every other rank
-/// only ever holds its own rows (docs/parallel.md). Writing goes to `<path>.tmp`, renamed to `<path>`: a crash
+/// Memory: rank 0 writes one table at a time and a block of rows at a time (it holds the table's ids and one block;
+/// the ranks read the rows of a block from their state when asked), and reads one table at a time (it holds that
+/// table); every other rank only ever holds its own rows (docs/parallel.md). Writing goes to `<path>.tmp`, renamed to `<path>`: a crash
 /// while writing never destroys the previous checkpoint; a failed write is an OutputError naming the file.
 #include <mpi.h>
 
@@ -33,15 +34,24 @@ struct CheckpointTable {
   const double* row(GlobalId id) const;
 };
 
+/// A table read from what it was made from when the checkpoint is written, a block of rows at a time: valid while
+/// that lives and is unchanged.
+struct TableSource {
+  int width = 0;
+  /// The ids of the rows, sorted and unique (made when the table is written).
+  std::function<std::vector<GlobalId>()> ids;
+  /// The values of rows first .. first + count - 1 (in ids order) into out: count * width values.
+  std::function<void(std::size_t first, std::size_t count, double* out)> rows;
+};
+
 /// The contents of a checkpoint.
 struct CheckpointData {
   std::map<std::string, double> scalars;
   std::map<std::string, std::string> strings;
   std::map<std::string, CheckpointTable> tables;
-  /// Tables built only when the checkpoint is written, one at a time, so that writing a large state never holds a
-  /// copy of all of it (names distinct from those of `tables`). They read what they were made from: valid while
-  /// it lives and unchanged; built() makes a snapshot.
-  std::map<std::string, std::function<CheckpointTable()>> table_sources;
+  /// Tables never copied whole: written a block at a time from their sources (names distinct from those of
+  /// `tables`); built() makes a snapshot.
+  std::map<std::string, TableSource> table_sources;
 };
 
 /// `data` with every table source built into a table (a copy that outlives what the sources read).

@@ -1,6 +1,7 @@
 #include "shellfrac/solver/state_checkpoint.hpp"
 
 #include <algorithm>
+#include <memory>
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/disc/dg_element.hpp"
@@ -19,12 +20,12 @@ int field_width(const Rows<P, V>&) {
 }
 int field_width(const std::vector<int>&) { return 1; }
 
-/// Appends row r of a field to `out`, and reads it back from `in` (advancing it).
+/// Copies row r of a field to `out` (advancing it), and reads it back from `in` (advancing it).
 template <int P, int V>
-void append_row(const Rows<P, V>& f, LocalId r, std::vector<double>& out) {
-  out.insert(out.end(), f.at(r), f.at(r) + Rows<P, V>::width);
+void copy_row(const Rows<P, V>& f, LocalId r, double*& out) {
+  out = std::copy(f.at(r), f.at(r) + Rows<P, V>::width, out);
 }
-void append_row(const std::vector<int>& f, LocalId r, std::vector<double>& out) { out.push_back(double(f[r])); }
+void copy_row(const std::vector<int>& f, LocalId r, double*& out) { *out++ = double(f[r]); }
 template <int P, int V>
 void read_row(Rows<P, V>& f, LocalId r, const double*& in) {
   std::copy(in, in + Rows<P, V>::width, f.at(r)), in += Rows<P, V>::width;
@@ -36,43 +37,48 @@ std::string interface_table(const char* field) { return std::string("interface "
 
 }  // namespace
 
-// One table per field, each built only when the checkpoint is written (CheckpointData::table_sources).
+// One table per field, read from the state a block of rows at a time when the checkpoint is written
+// (io::TableSource): the owned elements in ascending global id (row = local id), and the owned interfaces, which
+// are listed by ascending gid (row k = the k-th owned interface).
 io::CheckpointData state_checkpoint(const ShellState& s, const decomposition::DistributedMesh& dm, bool plastic) {
   io::CheckpointData d;
   d.scalars["time"] = s.time, d.scalars["step"] = double(s.step);
   d.scalars["num_elements"] = double(dm.num_global_elements());
   const auto* mesh = &dm;
+  const auto element_ids = [mesh] {
+    std::vector<GlobalId> ids(std::size_t(mesh->num_owned()));
+    for (LocalId le = 0; le < mesh->num_owned(); ++le) ids[std::size_t(le)] = mesh->element_gid(le);
+    return ids;
+  };
   ShellState::visit_element_fields(s, [&](const char* name, const auto& f) {
-    d.table_sources[element_table(name)] = [field = &f, mesh] {
-      io::CheckpointTable t;
-      t.width = field_width(*field);
-      for (LocalId le = 0; le < mesh->num_owned(); ++le) t.ids.push_back(mesh->element_gid(le)), append_row(*field, le, t.values);
-      return t;
-    };
+    d.table_sources[element_table(name)] = {field_width(f), element_ids,
+                                             [field = &f](std::size_t first, std::size_t count, double* out) {
+                                               for (std::size_t le = first; le < first + count; ++le)
+                                                 copy_row(*field, LocalId(le), out);
+                                             }};
   });
   if (plastic)
-    d.table_sources["plastic"] = [state = &s, mesh] {
-      io::CheckpointTable t;
-      t.width = nq * plastic_state_values;
-      for (LocalId le = 0; le < mesh->num_owned(); ++le) {
-        t.ids.push_back(mesh->element_gid(le));
-        for (int q = 0; q < nq; ++q) {
-          double v[plastic_state_values];
-          pack_plastic_state(state->plastic[le * nq + q], v);
-          t.values.insert(t.values.end(), v, v + plastic_state_values);
-        }
-      }
-      return t;
-    };
+    d.table_sources["plastic"] = {nq * plastic_state_values, element_ids,
+                                  [state = &s](std::size_t first, std::size_t count, double* out) {
+                                    for (std::size_t le = first; le < first + count; ++le)
+                                      for (int q = 0; q < nq; ++q, out += plastic_state_values)
+                                        pack_plastic_state(state->plastic[le * nq + std::size_t(q)], out);
+                                  }};
+  // The owned interfaces' local indices, in ascending gid (dm.interfaces() is sorted by gid).
+  auto owned = std::make_shared<std::vector<LocalId>>();
+  for (std::size_t i = 0; i < dm.interfaces().size(); ++i)
+    if (dm.interfaces()[i].owned) owned->push_back(LocalId(i));
+  const auto interface_ids = [mesh, owned] {
+    std::vector<GlobalId> ids;
+    for (const LocalId i : *owned) ids.push_back(mesh->interfaces()[std::size_t(i)].gid);
+    return ids;
+  };
   ShellState::visit_interface_fields(s, [&](const char* name, const auto& f) {
-    d.table_sources[interface_table(name)] = [field = &f, mesh] {
-      io::CheckpointTable t;
-      t.width = field_width(*field);
-      const auto& ifs = mesh->interfaces();
-      for (std::size_t i = 0; i < ifs.size(); ++i)
-        if (ifs[i].owned) t.ids.push_back(ifs[i].gid), append_row(*field, LocalId(i), t.values);
-      return t;
-    };
+    d.table_sources[interface_table(name)] = {field_width(f), interface_ids,
+                                               [field = &f, owned](std::size_t first, std::size_t count, double* out) {
+                                                 for (std::size_t k = first; k < first + count; ++k)
+                                                   copy_row(*field, (*owned)[k], out);
+                                               }};
   });
   return d;
 }
