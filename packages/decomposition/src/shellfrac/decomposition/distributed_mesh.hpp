@@ -76,6 +76,11 @@ class DistributedMesh {
   const std::vector<int>& element_blocks() const { return element_block_; }
   /// Reference coordinates of DG node a of overlap element le.
   const Vec3& node_coords(LocalId le, int a) const { return coords_[le * npe_ + a]; }
+  /// The same for every overlap element at once: coordinate c of node a of element le at (le * npe + a) * 3 + c.
+  const double* node_coords_data() const {
+    static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is three packed doubles");
+    return coords_.empty() ? nullptr : coords_.front().data();
+  }
   /// Original (conforming) mesh node of DG node a of overlap element le.
   GlobalId mesh_node(LocalId le, int a) const { return mesh_node_[le * npe_ + a]; }
   /// Global DG node id of node a of overlap element le.

@@ -258,14 +258,14 @@ class FileWriter {
     SHELLFRAC_EXO_CHECK(put_qa(id), path << ": QA record");
     SHELLFRAC_EXO_CHECK(put_coordinate_names(id), path << ": coordinate names");
 
-    {
-      std::vector<double> x(num_file_nodes_, 0.0), y(num_file_nodes_, 0.0), z(num_file_nodes_, 0.0);
-      for (std::size_t n = 0; n < num_nodes_; ++n) {
-        x[n] = l.node_coords[n][0];
-        y[n] = l.node_coords[n][1];
-        z[n] = l.node_coords[n][2];
+    {  // one coordinate at a time (ex_put_coord skips the null arrays)
+      std::vector<double> c(num_file_nodes_, 0.0);
+      for (int k = 0; k < 3; ++k) {
+        for (std::size_t n = 0; n < num_nodes_; ++n) c[n] = l.node_coords[n][k];
+        SHELLFRAC_EXO_CHECK(ex_put_coord(id, k == 0 ? c.data() : nullptr, k == 1 ? c.data() : nullptr,
+                                         k == 2 ? c.data() : nullptr),
+                            path);
       }
-      SHELLFRAC_EXO_CHECK(ex_put_coord(id, x.data(), y.data(), z.data()), path);
     }
 
     // Blocks: file elements are grouped by block; DG node i*npe + a belongs to (layout) element i.
@@ -775,7 +775,7 @@ struct ExodusResultsWriter::Impl {
   std::size_t num_vectors = 0;
 };
 
-ExodusResultsWriter::ExodusResultsWriter(const std::string& path, const ResultsLayout& layout, MPI_Comm comm)
+ExodusResultsWriter::ExodusResultsWriter(const std::string& path, ResultsLayout layout, MPI_Comm comm)
     : impl_(std::make_unique<Impl>()) {
   int np = 1, rank = 0;
   MPI_Comm_size(comm, &np);
@@ -793,18 +793,18 @@ ExodusResultsWriter::ExodusResultsWriter(const std::string& path, const ResultsL
     }
     l.title = layout.title;
     l.nodes_per_element = layout.nodes_per_element;
-    l.element_gids = layout.element_gids;
-    l.element_block = layout.element_block;
+    l.element_gids = std::move(layout.element_gids);
+    l.element_block = std::move(layout.element_block);
     l.block_names = layout.block_names;
     l.block_ids = layout.block_ids;
-    l.node_coords = layout.node_coords;
+    l.node_coords = std::move(layout.node_coords);
     for (const auto& v : layout.nodal_vectors)
       for (const char* suffix : component_suffix) l.nodal_names.push_back(v + suffix);
     l.element_names = layout.element_scalars;
     l.global_names = layout.global_variables;
     if (rank == 0) l.info = layout.info;  // the deck once per set, not once per rank
-    l.node_sets = layout.node_sets;
-    l.side_sets = layout.side_sets;
+    l.node_sets = std::move(layout.node_sets);
+    l.side_sets = std::move(layout.side_sets);
     impl_->num_vectors = layout.nodal_vectors.size();
     impl_->writer.open(file_, l);
   } catch (...) {

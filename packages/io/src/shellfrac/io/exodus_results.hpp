@@ -71,7 +71,8 @@ std::string rank_file_name(const std::string& path, int np, int rank);
 class ExodusResultsWriter {
  public:
   /// Creates (overwrites) the file(s) and writes the mesh part. Throws Error naming the file on failure.
-  ExodusResultsWriter(const std::string& path, const ResultsLayout& layout, MPI_Comm comm = MPI_COMM_WORLD);
+  /// The layout is taken by value: pass a temporary (or std::move) so that its arrays are not copied.
+  ExodusResultsWriter(const std::string& path, ResultsLayout layout, MPI_Comm comm = MPI_COMM_WORLD);
   ~ExodusResultsWriter();
   ExodusResultsWriter(const ExodusResultsWriter&) = delete;
   ExodusResultsWriter& operator=(const ExodusResultsWriter&) = delete;

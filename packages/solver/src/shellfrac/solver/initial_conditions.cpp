@@ -17,7 +17,7 @@ namespace {
 void size_state(const ShellModel& model, ShellState& s) {
   const auto& dm = model.dm;
   const LocalId no = model.owned, ni = static_cast<LocalId>(dm.interfaces().size());
-  s.x = model.X;
+  s.x.vector().assign(model.X.data(), model.X.data() + model.X.size());
   s.t.assign(model.overlap);
   for (LocalId le = 0; le < model.overlap; ++le)
     for (int a = 0; a < 3; ++a) disc::copy3(dm.reference_director(le, a).data(), s.t.at(le, a));

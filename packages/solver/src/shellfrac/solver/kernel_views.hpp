@@ -36,5 +36,8 @@ template <int P, int V>
 KernelView<const double> kernel_view(const Rows<P, V>& r) {
   return KernelView<const double>(r.data(), r.size());
 }
+inline KernelView<const double> kernel_view(const PositionRowsView& r) {
+  return KernelView<const double>(r.data(), r.size());
+}
 
 }  // namespace shellfrac::solver

@@ -49,9 +49,8 @@ void check_orientation(const mesh::SerialMesh& m, const mesh::EdgeTopology& topo
                                         "(e.g. Gmsh: ReorientMesh / Reverse Surface)");
 }
 
-std::vector<std::string> model_warnings(const Deck& deck, const RunModel& r) {
+std::vector<std::string> mesh_warnings(const mesh::SerialMesh& m) {
   std::vector<std::string> out;
-  const auto& m = *r.mesh;
   if (const auto c = mesh::coincident_nodes(m); c.count > 0) {
     std::ostringstream os;
     os << m.source << ": " << c.count << " mesh node(s) lie at the position of another node without being shared "
@@ -59,6 +58,11 @@ std::vector<std::string> model_warnings(const Deck& deck, const RunModel& r) {
        << "there are not connected: a seam or a crack if that is meant, otherwise merge the duplicate nodes";
     out.push_back(os.str());
   }
+  return out;
+}
+
+std::vector<std::string> model_warnings(const Deck& deck, const RunModel& r) {
+  std::vector<std::string> out;
   const double dt = r.dynamics->time_step(), end = deck.time.end_time;
   if (end > 0 && end <= 0.5 * dt) {  // the time loop steps while t + dt/2 < End Time
     std::ostringstream os;
@@ -68,6 +72,8 @@ std::vector<std::string> model_warnings(const Deck& deck, const RunModel& r) {
   }
   return out;
 }
+
+void RunModel::release_global_mesh() { mesh.reset(); }
 
 RunModel build_run_model(const Deck& deck, MPI_Comm comm) {
   RunModel r;
@@ -80,16 +86,24 @@ RunModel build_run_model(const Deck& deck, MPI_Comm comm) {
   };
   r.mesh = std::make_unique<mesh::SerialMesh>(build_mesh(deck.mesh, comm));
   check_deck_against_mesh(deck, *r.mesh);
+  for (const auto& b : r.mesh->blocks) r.block_names.push_back(b.name), r.block_ids.push_back(b.id);
+  r.warnings = mesh_warnings(*r.mesh);
+  r.counts.elements = r.mesh->num_elements(), r.counts.nodes = r.mesh->num_nodes();
   lap();
-  r.topology = std::make_unique<mesh::EdgeTopology>(mesh::build_edge_topology(*r.mesh, deck.mesh.non_manifold));
-  check_orientation(*r.mesh, *r.topology);
-  lap();
-  const auto part = decomposition::partition_elements(*r.mesh, *r.topology, parallel::size(comm), *deck.partition, comm);
-  lap();
-  r.distributed = std::make_unique<decomposition::DistributedMesh>(*r.mesh, *r.topology, part, comm);
-  lap();
+  {  // the topology serves the partition and the distribution, then goes (the set-up's peak memory)
+    const auto topology = mesh::build_edge_topology(*r.mesh, deck.mesh.non_manifold);
+    check_orientation(*r.mesh, topology);
+    r.counts.edges = topology.num_edges(), r.counts.interfaces = GlobalId(topology.interfaces.size());
+    r.counts.boundary_edges = GlobalId(topology.boundary.size());
+    r.counts.non_manifold_edges = topology.num_non_manifold_edges;
+    lap();
+    const auto part = decomposition::partition_elements(*r.mesh, topology, parallel::size(comm), *deck.partition, comm);
+    lap();
+    r.distributed = std::make_unique<decomposition::DistributedMesh>(*r.mesh, topology, part, comm);
+    lap();
+  }
   r.dynamics = std::make_unique<ShellDynamics>(*r.mesh, *r.distributed, deck);
-  r.warnings = model_warnings(deck, r);
+  for (auto& w : model_warnings(deck, r)) r.warnings.push_back(std::move(w));
   lap();
   std::vector<double> slowest(seconds.size());
   SHELLFRAC_REQUIRE(MPI_Allreduce(seconds.data(), slowest.data(), int(seconds.size()), MPI_DOUBLE, MPI_MAX, comm) ==

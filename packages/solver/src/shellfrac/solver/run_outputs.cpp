@@ -50,12 +50,13 @@ void remove_stale_results(const std::string& path) {
     if (std::regex_match(entry.path().filename().string(), set_file)) fs::remove(entry.path(), ec);
 }
 
-/// The mesh's node and side sets, then the deck's regions (ids after the mesh's), on the owned elements' DG
-/// copies: a node set holds every DG copy of its mesh nodes, a side set the owned element edges. A side set
-/// named like a node set (every region, and x_min ... of the generators) is written as <name>_edges
-/// (sideset_<id> if that is too long for Exodus): ParaView 5.11's IOSS reader fails on a file whose node and
-/// side sets share names once both are shown with displacements.
-void add_sets(const Deck& deck, const RunModel& model, io::ResultsLayout& layout) {
+}  // namespace
+
+// A side set named like a node set (every region, and x_min ... of the generators) is written as <name>_edges
+// (sideset_<id> if that is too long for Exodus): ParaView 5.11's IOSS reader fails on a file whose node and side
+// sets share names once both are shown with displacements.
+ResultsSets results_sets(const Deck& deck, const RunModel& model) {
+  ResultsSets layout;
   const auto& dm = *model.distributed;
   const auto& mesh = *model.mesh;
   const GlobalId npe = dm.nodes_per_element();
@@ -86,7 +87,10 @@ void add_sets(const Deck& deck, const RunModel& model, io::ResultsLayout& layout
   for (const auto& r : deck.regions) add_nodes(r.name, ++node_id);
   for (const auto& s : mesh.side_sets) add_sides(s.name, s.id), side_id = std::max(side_id, s.id);
   for (const auto& r : deck.regions) add_sides(r.name, ++side_id);
+  return layout;
 }
+
+namespace {
 
 /// Indices of the written fields among `candidates` (Output->Fields; empty: all), in candidate order.
 std::vector<int> written(const std::vector<std::string>& candidates, const std::vector<std::string>& fields) {
@@ -106,22 +110,25 @@ std::vector<T> pick(std::vector<T> all, const std::vector<int>& which) {
 
 /// The Exodus layout of the owned elements: blocks, DG nodes, the nodal vectors and element fields, and the
 /// history columns as global variables (names cut to the length Exodus readers take).
-io::ResultsLayout results_layout(const Deck& deck, const RunModel& model, const std::vector<std::string>& columns) {
+io::ResultsLayout results_layout(const Deck& deck, const RunModel& model, const ResultsSets& sets,
+                                 const std::vector<std::string>& columns) {
   const auto& dm = *model.distributed;
   io::ResultsLayout layout;
   layout.title = "shellfrac: " + deck.file;
   layout.nodes_per_element = dm.nodes_per_element();
-  for (const auto& b : model.mesh->blocks) layout.block_names.push_back(b.name), layout.block_ids.push_back(b.id);
+  layout.block_names = model.block_names, layout.block_ids = model.block_ids;
   layout.nodal_vectors = pick(nodal_result_names(), written(nodal_result_names(), deck.output.fields));
   layout.element_scalars = pick(element_result_names(), written(element_result_names(), deck.output.fields));
   layout.info = info_records(*deck.expanded, deck.file);
   for (const auto& c : columns) layout.global_variables.push_back(c.substr(0, io::max_global_name_length));
+  layout.element_gids.reserve(std::size_t(dm.num_owned())), layout.element_block.reserve(std::size_t(dm.num_owned()));
+  layout.node_coords.reserve(std::size_t(dm.num_owned()) * std::size_t(dm.nodes_per_element()));
   for (LocalId le = 0; le < dm.num_owned(); ++le) {
     layout.element_gids.push_back(dm.element_gid(le));
     layout.element_block.push_back(dm.element_block(le));
     for (int a = 0; a < dm.nodes_per_element(); ++a) layout.node_coords.push_back(dm.node_coords(le, a));
   }
-  add_sets(deck, model, layout);
+  layout.node_sets = sets.node_sets, layout.side_sets = sets.side_sets;
   return layout;
 }
 
@@ -145,9 +152,9 @@ std::string ResultPaths::restart_exodus(long step) const {
   return exodus.substr(0, exodus.size() - 4) + ".restart" + std::to_string(step) + ".exo";
 }
 
-RunOutputs::RunOutputs(const Deck& deck, RunModel& model, const std::vector<std::string>& probe_names,
-                       const std::vector<std::vector<char>>& probe_members, long restart_step, double e0,
-                       MPI_Comm comm)
+RunOutputs::RunOutputs(const Deck& deck, RunModel& model, const ResultsSets& sets,
+                       const std::vector<std::string>& probe_names, const std::vector<std::vector<char>>& probe_members,
+                       long restart_step, double e0, MPI_Comm comm)
     : deck_(deck),
       model_(model),
       probe_names_(probe_names),
@@ -172,7 +179,7 @@ RunOutputs::RunOutputs(const Deck& deck, RunModel& model, const std::vector<std:
   const auto& dm = *model.distributed;
   element_constant_.resize(2);
   for (LocalId le = 0; le < dm.num_owned(); ++le) {
-    element_constant_[0].push_back(model.mesh->blocks[dm.element_block(le)].id);
+    element_constant_[0].push_back(model.block_ids[std::size_t(dm.element_block(le))]);
     element_constant_[1].push_back(dm.rank());
   }
   for (const auto& bc : deck.boundary_conditions) condition_names_.push_back(bc.name);
@@ -180,7 +187,7 @@ RunOutputs::RunOutputs(const Deck& deck, RunModel& model, const std::vector<std:
   for (const auto& [name, value] : history_row({}, 0, probe_names_, std::vector<double>(6 * probe_names_.size()),
                                                condition_names_, std::vector<double>(6 * condition_names_.size())))
     columns.push_back(name);
-  exodus_ = std::make_unique<io::ExodusResultsWriter>(exodus_path_, results_layout(deck, model, columns), comm);
+  exodus_ = std::make_unique<io::ExodusResultsWriter>(exodus_path_, results_layout(deck, model, sets, columns), comm);
   const auto& dyn = *model.dynamics;
   history_ = csv(paths.history, columns, restarted, double(restart_step), comm);
   if (!dyn.fracture()) return;

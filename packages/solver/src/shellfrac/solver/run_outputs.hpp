@@ -11,6 +11,7 @@
 
 #include "shellfrac/core/types.hpp"
 #include "shellfrac/io/checkpoint.hpp"
+#include "shellfrac/io/exodus_results.hpp"
 
 namespace shellfrac::io {
 class ExodusResultsWriter;
@@ -31,11 +32,20 @@ struct ResultPaths {
   std::string restart_exodus(long step) const;
 };
 
+/// The sets written with the results (docs/output.md): the mesh's node and side sets, then the deck's regions
+/// (ids after the mesh's), on this rank's owned DG copies (a node set holds every DG copy of its mesh nodes, a
+/// side set the owned element edges). Resolved on the conforming mesh: at set-up, while the model has it.
+struct ResultsSets {
+  std::vector<io::ResultsSet> node_sets, side_sets;
+};
+ResultsSets results_sets(const Deck& deck, const RunModel& model);
+
 class RunOutputs {
  public:
   /// Creates the files (removing stale results of an earlier run first; a restarted run keeps its CSV rows
-  /// up to the restart point). `e0` is the initial energy of the balance (the restart's, if restarted). Collective.
-  RunOutputs(const Deck& deck, RunModel& model, const std::vector<std::string>& probe_names,
+  /// up to the restart point) with the sets `sets` (results_sets). `e0` is the initial energy of the balance (the
+  /// restart's, if restarted). Collective.
+  RunOutputs(const Deck& deck, RunModel& model, const ResultsSets& sets, const std::vector<std::string>& probe_names,
              const std::vector<std::vector<char>>& probe_members, long restart_step, double e0, MPI_Comm comm);
   ~RunOutputs();
 

@@ -62,8 +62,11 @@ double vm_norm(const double X[3]) {
 
 struct ShellDynamics::Impl {
   Impl(const mesh::SerialMesh& mesh, const decomposition::DistributedMesh& dm, const Deck& deck)
+      : Impl(MeshSets(mesh, deck.file, deck.regions), mesh, dm, deck) {}
+  // The sets are resolved on the conforming mesh during the construction only: the dynamics keep no reference to
+  // it (the run releases it after the set-up).
+  Impl(const MeshSets& sets, const mesh::SerialMesh& mesh, const decomposition::DistributedMesh& dm, const Deck& deck)
       : file(deck.file),
-        sets(mesh, deck.file, deck.regions),
         model(dm, deck, block_sections(deck, block_names(mesh))),
         dt(choose_time_step(deck.time, model.stable_dt, deck.file)),
         fracture(deck.fracture, sets, model),
@@ -77,7 +80,6 @@ struct ShellDynamics::Impl {
   }
 
   std::string file;
-  MeshSets sets;
   PhaseTimes times;
   ShellModel model;
   double dt;

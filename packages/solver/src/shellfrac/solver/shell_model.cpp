@@ -133,10 +133,7 @@ ShellModel::ShellModel(const decomposition::DistributedMesh& d, const Deck& deck
     : dm(d), owned(d.num_owned()), overlap(d.num_overlap()), sections(s) {
   SHELLFRAC_REQUIRE(dm.nodes_per_element() == 6, "the DG shell needs TRI6 elements");
   check_not_folded(dm, deck.mesh.file.empty() ? deck.file : deck.mesh.file);
-  X.assign(overlap);
-  for (LocalId le = 0; le < overlap; ++le)
-    for (int A = 0; A < 6; ++A)
-      for (int c = 0; c < 3; ++c) X.at(le, A)[c] = dm.node_coords(le, A)[c];
+  X = PositionRowsView(dm.node_coords_data(), overlap);
   // Point laws of the blocks.
   block_elastic.resize(sections.size()), block_plastic.resize(sections.size()), block_is_plastic.assign(sections.size(), 0);
   for (std::size_t b = 0; b < sections.size(); ++b) {
@@ -234,7 +231,7 @@ bool ShellModel::is_plastic(LocalId le) const { return block_is_plastic[dm.eleme
 
 double ShellModel::bytes() const {
   return sizeof(disc::DgElementRef) * double(element_refs.size()) +
-         sizeof(double) * double(X.size() + mass.size() + inertia.size()) +
+         sizeof(double) * double(mass.size() + inertia.size()) +
          sizeof(disc::DgInterfaceRef) * double(interface_refs.size());
 }
 

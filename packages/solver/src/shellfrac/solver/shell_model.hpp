@@ -62,7 +62,7 @@ struct ShellModel {
   const decomposition::DistributedMesh& dm;
   LocalId owned = 0, overlap = 0;
   std::vector<BlockSection> sections;        ///< by block index
-  PositionRows X;                            ///< reference positions (overlap)
+  PositionRowsView X;                        ///< reference positions (overlap; the distributed mesh's, not copied)
   std::vector<disc::DgElementRef> element_refs;  ///< owned elements
   std::vector<std::array<bool, 3>> lifted;   ///< owned: the jump over edge k is lifted (an intact manifold edge)
   // The point laws' section data, by block index (an element's block: dm.element_block(le)).

@@ -47,6 +47,23 @@ using Scalars = Rows<1, 1>;                    ///< one value per row
 constexpr int position_values = PositionRows::width;  ///< 18
 constexpr int director_values = DirectorRows::width;  ///< 9
 
+/// Position rows held elsewhere, read only (the reference positions, which the distributed mesh keeps).
+class PositionRowsView {
+ public:
+  PositionRowsView() = default;
+  PositionRowsView(const double* data, LocalId rows) : data_(data), rows_(rows) {}
+  static constexpr int width = PositionRows::width;
+  LocalId rows() const { return rows_; }
+  const double* at(LocalId r, int p = 0) const { return data_ + (std::size_t(r) * position_nodes + p) * 3; }
+  const double* point(LocalId i) const { return data_ + std::size_t(i) * 3; }
+  const double* data() const { return data_; }
+  std::size_t size() const { return std::size_t(rows_) * width; }
+
+ private:
+  const double* data_ = nullptr;
+  LocalId rows_ = 0;
+};
+
 /// 3 x 3 matrix from / to 9 row-major values.
 inline void load_matrix(const double* v, double L[3][3]) {
   for (int i = 0; i < 9; ++i) L[i / 3][i % 3] = v[i];

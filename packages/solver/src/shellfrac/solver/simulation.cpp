@@ -14,7 +14,6 @@
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/io/checkpoint.hpp"
 #include "shellfrac/io/exodus_results.hpp"
-#include "shellfrac/mesh/edge_topology.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
 #include "shellfrac/solver/checkpoint_series.hpp"
 #include "shellfrac/solver/mesh_sets.hpp"
@@ -175,9 +174,11 @@ Simulation::Simulation(const std::string& deck_file, MPI_Comm comm, const std::s
   model_ = build_run_model(deck_, comm);
   fingerprint_ = RestartFingerprint::of(deck_, *model_.distributed);
   progress_interval_ = deck_.output.progress_interval;
-  if (!deck_.checkpoint.restart_from.empty()) restart_from_checkpoint();
   resolve_probes();
+  results_sets_ = results_sets(deck_, model_);
   summarize();
+  model_.release_global_mesh();  // from here on a rank holds only its part of the mesh
+  if (!deck_.checkpoint.restart_from.empty()) restart_from_checkpoint();
   check_time_step();
 }
 
@@ -210,18 +211,14 @@ void Simulation::resolve_probes() {
 }
 
 void Simulation::summarize() {
-  const auto& m = *model_.mesh;
-  const auto& topo = *model_.topology;
   const auto& dm = *model_.distributed;
   summary_.stable_dt = model_.dynamics->stable_time_step();
   summary_.mass_scaling = model_.dynamics->model().mass_scaling;
   summary_.dt = model_.dynamics->time_step();
-  summary_.elements = m.num_elements();
-  summary_.nodes = m.num_nodes();
-  summary_.edges = topo.num_edges();
-  summary_.interfaces = static_cast<GlobalId>(topo.interfaces.size());
-  summary_.boundary_edges = static_cast<GlobalId>(topo.boundary.size());
-  summary_.non_manifold_edges = topo.num_non_manifold_edges;
+  const MeshCounts& c = model_.counts;
+  summary_.elements = c.elements, summary_.nodes = c.nodes, summary_.edges = c.edges;
+  summary_.interfaces = c.interfaces, summary_.boundary_edges = c.boundary_edges;
+  summary_.non_manifold_edges = c.non_manifold_edges;
   summary_.max_owned = static_cast<GlobalId>(parallel::max(double(dm.num_owned()), comm_));
   summary_.min_owned = -static_cast<GlobalId>(parallel::max(-double(dm.num_owned()), comm_));
   summary_.max_ghosts = static_cast<GlobalId>(parallel::max(double(dm.num_ghosts()), comm_));
@@ -229,7 +226,7 @@ void Simulation::summarize() {
 }
 
 std::string Simulation::element_description(GlobalId element, int block) const {
-  const std::string& name = model_.mesh->blocks.at(block).name;
+  const std::string& name = model_.block_names.at(std::size_t(block));
   const auto& section = deck_.blocks.at(name);
   const auto& m = deck_.materials.at(section.material);
   std::ostringstream os;
@@ -291,7 +288,7 @@ RunSummary Simulation::run() {
   const bool restarted = summary_.restart_step >= 0;
   const StepRecord r0 = dyn.record();
   const double e0 = restarted ? restart_e0_ : r0.kinetic + r0.strain + r0.penalty;
-  RunOutputs out(deck_, model_, probe_names_, probe_members_, summary_.restart_step, e0, comm_);
+  RunOutputs out(deck_, model_, results_sets_, probe_names_, probe_members_, summary_.restart_step, e0, comm_);
   const auto& tp = deck_.time;
   OutputSchedule frames(tp);
   if (restarted) {

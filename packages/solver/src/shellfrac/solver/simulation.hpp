@@ -15,6 +15,7 @@
 #include "shellfrac/solver/mesh_sets.hpp"
 #include "shellfrac/solver/model_setup.hpp"
 #include "shellfrac/solver/restart_fingerprint.hpp"
+#include "shellfrac/solver/run_outputs.hpp"
 
 namespace shellfrac::solver {
 
@@ -89,6 +90,7 @@ class Simulation {
   RunModel model_;
   std::vector<std::string> probe_names_;
   std::vector<std::vector<char>> probe_members_;
+  ResultsSets results_sets_;  ///< the sets of the Exodus results, resolved at set-up
   RunSummary summary_;
   double restart_e0_ = 0;  ///< initial energy of the restarted run (for the balance error)
   double progress_interval_ = 10;  ///< seconds between progress lines (Output->Progress Interval; 0 = none)
