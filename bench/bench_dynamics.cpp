@@ -12,6 +12,7 @@
 
 #include <Kokkos_Core.hpp>
 #include <Tpetra_Core.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -106,6 +107,9 @@ int run(int argc, char** argv) {
   const double total = per_element_step(wall);
   const double bytes = parallel::max(dyn.bytes_per_element(), comm);
   const int threads = Kokkos::DefaultExecutionSpace().concurrency();
+  const auto peaks = parallel::peak_resident_bytes(comm);
+  double peak_sum = 0;
+  for (const double p : peaks) peak_sum += p;
   if (root) {
     std::cout << "shellfrac_bench: " << deck_file << ", " << dmesh.num_global_elements() << " elements, " << np
               << " rank(s) x " << threads << " thread(s), " << steps << " steps (after " << warmup
@@ -118,6 +122,8 @@ int run(int argc, char** argv) {
               << "update_us_per_element_step=" << update << "\n"
               << "nucleation_check_us_per_element_step=" << nucleation << " (part of update)\n"
               << "bytes_per_element=" << bytes << "\n"
+              << "peak_resident_bytes_max=" << *std::max_element(peaks.begin(), peaks.end()) << "\n"
+              << "peak_resident_bytes_per_element=" << peak_sum / double(dmesh.num_global_elements()) << "\n"
               << "total_us_per_element_step=" << total << std::endl;
   }
   return 0;

@@ -1,16 +1,21 @@
 #!/usr/bin/env python3
 """The scaling study of paper §6.4 (Fig. 19) with shellfrac_bench: time per explicit step against the number of
-processors (cores = ranks x threads), weak and strong, over every (ranks x threads) layout up to --max-cores.
+processors (cores = ranks x threads), weak and strong, over every (ranks x threads) layout up to --max-cores; and
+the size study: time per element-step (by phase) and memory per element against the number of elements, on one
+layout.
 
 usage: scaling.py [--max-cores N] [--bench BUILD/bench/shellfrac_bench] [--mpiexec mpiexec] [--steps 100]
-                  [--warmup 5] [--repeats 3] [--study weak strong] [--strong-sizes 16000 64000 256000]
+                  [--warmup 5] [--repeats 3] [--study weak strong size] [--strong-sizes 16000 64000 256000]
+                  [--sizes 16000 64000 256000 686440] [--size-ranks 2]
                   [-o scaling]                       (writes scaling.csv, one row per run, and scaling.png)
 
 The problem is the paper's cantilever strip (xml/cantilever_200x40.xml: 10 m x 2 m, 200 x 40 grid cells of two
 TRI6 each, 16 000 elements). Weak study: 16 000 elements per core; P = 4^k cores get the strip refined k times
 (200 2^k x 40 2^k cells, as the paper's uniform refinement x4 per processors x4) and P = 2 x 4^k cores get it
 refined k times and doubled along the length. Strong study: 16 000, 64 000 and 256 000 elements (200 x 40,
-400 x 80, 800 x 160) on every P. P runs over the powers of 2 up to --max-cores (default: the cores of this
+400 x 80, 800 x 160) on every P. Size study (not run unless asked): the strip of 5 w x w cells (10 w^2 elements:
+--sizes, each 10 w^2) on --size-ranks ranks x 1 thread; per size the median µs per element-step of the run and
+of each phase, the model's bytes per element and the peak resident memory of all ranks per element. P runs over the powers of 2 up to --max-cores (default: the cores of this
 machine); each P over every layout ranks x threads = P (ranks and threads powers of 2; threads only when the
 benchmark was built with Kokkos OpenMP: tools/build-trilinos.sh, README "for threads"). Each run is repeated
 --repeats times and the median wall time per step is plotted; the CSV holds every run with its phases.
@@ -47,8 +52,10 @@ def parse():
     p.add_argument("--steps", type=int, default=100)
     p.add_argument("--warmup", type=int, default=5)
     p.add_argument("--repeats", type=int, default=3)
-    p.add_argument("--study", nargs="+", default=["weak", "strong"], choices=["weak", "strong"])
+    p.add_argument("--study", nargs="+", default=["weak", "strong"], choices=["weak", "strong", "size"])
     p.add_argument("--strong-sizes", type=int, nargs="+", default=[16000, 64000, 256000])
+    p.add_argument("--sizes", type=int, nargs="+", default=[16000, 64000, 256000, 686440])
+    p.add_argument("--size-ranks", type=int, default=2)
     p.add_argument("--deck", default=os.path.join(PROJECT, "xml", "cantilever_200x40.xml"))
     p.add_argument("-o", "--output", default="scaling", help="output base: BASE.csv and BASE.png")
     p.add_argument("--replot", metavar="CSV", help="no runs: redraw BASE.png and the table from a CSV of this tool")
@@ -66,6 +73,9 @@ def parse():
         k = round(math.log(cells / (BASE_CELLS[0] * BASE_CELLS[1]), 4))
         if k < 0 or BASE_CELLS[0] * BASE_CELLS[1] * 4 ** k * 2 != n:
             fail("--strong-sizes must be 16000 x 4^k elements (got %d)" % n)
+    for n in a.sizes:
+        if cells_for_strip(n) is None:
+            fail("--sizes must be 10 w^2 elements, the strip of 5 w x w cells (got %d)" % n)
     return a
 
 
@@ -81,6 +91,12 @@ def cells_for_weak(cores):
     k = int(math.log(cores, 4) + 1e-9)
     doubled = cores // 4 ** k  # 1 or 2
     return BASE_CELLS[0] * 2 ** k * doubled, BASE_CELLS[1] * 2 ** k
+
+
+def cells_for_strip(elements):
+    """The strip of 5 w x w cells with `elements` = 10 w^2 TRI6 elements (the 200 x 40 strip's aspect), or None."""
+    w = round(math.sqrt(elements / 10))
+    return (5 * w, w) if 10 * w * w == elements else None
 
 
 def cells_for_size(elements):
@@ -140,10 +156,8 @@ def read_rows(path):
 def main():
     a = parse()
     if a.replot:
-        summary = summarise(read_rows(a.replot))
-        print_table(summary)
-        plot(summary, a.output + ".png", None)
-        print("scaling.py: wrote %s.png" % a.output)
+        report(read_rows(a.replot), a.output, None)
+        print("scaling.py: wrote the figures of %s" % a.output)
         return
     template = open(a.deck).read()
     rows = []
@@ -156,6 +170,8 @@ def main():
             plan += [("weak", cells_for_weak(p), p, r, t) for p, r, t in layouts]
         if "strong" in a.study:
             plan += [("strong", cells_for_size(n), p, r, t) for n in a.strong_sizes for p, r, t in layouts]
+        if "size" in a.study:
+            plan += [("size", cells_for_strip(n), a.size_ranks, a.size_ranks, 1) for n in a.sizes]
         print("scaling.py: %d layouts (%s), %d runs x %d repeats, %d steps each; threads %s"
               % (len(layouts), ", ".join("%dx%d" % (r, t) for _, r, t in layouts), len(plan), a.repeats, a.steps,
                  "available" if threaded else "not built (Kokkos Serial): ranks only"), flush=True)
@@ -171,6 +187,7 @@ def main():
                        "us_per_element_step": v["total_us_per_element_step"]}
                 row.update({ph: v.get(ph + "_us_per_element_step", float("nan")) for ph in PHASES})
                 row["bytes_per_element"] = v.get("bytes_per_element", float("nan"))
+                row["peak_bytes_per_element"] = v.get("peak_resident_bytes_per_element", float("nan"))
                 rows.append(row)
                 print("  %-6s %7d elements  %2d cores = %d ranks x %d threads  %.4g s per step"
                       % (study, v["elements"], p, r, t, seconds), flush=True)
@@ -181,10 +198,22 @@ def main():
         for row in rows:
             w.writerow({k: ("%.6g" % x if isinstance(x, float) else x) for k, x in row.items()})
     os.replace(tmp, a.output + ".csv")
-    summary = summarise(rows)
-    print_table(summary)
-    plot(summary, a.output + ".png", a.steps)
+    report(rows, a.output, a.steps)
     print("scaling.py: wrote %s.csv and %s.png" % (a.output, a.output))
+
+
+def report(rows, output, steps):
+    """The tables and the figures: BASE.png for the weak and strong studies, BASE_size.png for the size study."""
+    scaling = [r for r in rows if r["study"] != "size"]
+    if scaling:
+        summary = summarise(scaling)
+        print_table(summary)
+        plot(summary, output + ".png", steps)
+    sizes = [r for r in rows if r["study"] == "size"]
+    if sizes:
+        summary = summarise_sizes(sizes)
+        print_size_table(summary)
+        plot_sizes(summary, output + "_size.png", steps)
 
 
 def summarise(rows):
@@ -209,6 +238,62 @@ def summarise(rows):
         t1 = base[0]["seconds"] if base else float("nan")
         e["efficiency"] = t1 / e["seconds"] if e["study"] == "weak" else t1 / (e["cores"] * e["seconds"])
     return summary
+
+
+def summarise_sizes(rows):
+    """Per size: the medians of the run's and each phase's µs per element-step, and of the memory per element."""
+    groups = {}
+    for row in rows:
+        groups.setdefault(row["elements"], []).append(row)
+    summary = []
+    for elements, g in sorted(groups.items()):
+        entry = {"elements": elements, "ranks": g[0]["ranks"], "runs": len(g)}
+        for k in ("us_per_element_step",) + PHASES + ("bytes_per_element", "peak_bytes_per_element"):
+            entry[k] = statistics.median(r.get(k, float("nan")) for r in g)
+        entry["low"] = min(r["us_per_element_step"] for r in g)
+        entry["high"] = max(r["us_per_element_step"] for r in g)
+        summary.append(entry)
+    return summary
+
+
+def print_size_table(summary):
+    print("| elements | ranks | µs per element-step (median) | min - max | element | interface | gather | "
+          "communication | update | model kB per element | peak kB per element | runs |")
+    print("|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for e in summary:
+        print("| %d | %d | %.3f | %.3f - %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.2f | %.2f | %d |"
+              % (e["elements"], e["ranks"], e["us_per_element_step"], e["low"], e["high"], e["element_kernel"],
+                 e["interface_kernel"], e["gather"], e["communication"], e["update"], e["bytes_per_element"] / 1024,
+                 e["peak_bytes_per_element"] / 1024, e["runs"]))
+
+
+def plot_sizes(summary, path, steps):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    elements = [e["elements"] for e in summary]
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.4))
+    left.plot(elements, [e["us_per_element_step"] for e in summary], "o-", color="k", label="whole step")
+    for c, ph in enumerate(PHASES):
+        left.plot(elements, [e[ph] for e in summary], "s--", color="C%d" % c, mfc="none", label=ph.replace("_", " "))
+    left.set_ylabel("µs per element-step (median)")
+    left.set_title("time, %d ranks" % summary[0]["ranks"] + (" (%d steps)" % steps if steps else ""))
+    right.plot(elements, [e["peak_bytes_per_element"] / 1024 for e in summary], "o-", color="k",
+               label="peak resident memory of all ranks")
+    right.plot(elements, [e["bytes_per_element"] / 1024 for e in summary], "s--", color="C0", mfc="none",
+               label="state, model and force buffers")
+    right.set_ylabel("kB per element (1 kB = 1024 B)")
+    right.set_ylim(bottom=0)
+    right.set_title("memory, %d ranks" % summary[0]["ranks"])
+    for ax in (left, right):
+        ax.set_xscale("log")
+        ax.set_xlabel("elements")
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    tmp = path + ".part.png"
+    fig.savefig(tmp, dpi=90)
+    os.replace(tmp, path)
 
 
 def print_table(summary):

@@ -329,7 +329,7 @@ class Reliability(unittest.TestCase):
 
     def test_a_mesh_too_large_for_the_memory_is_refused_before_it_is_built(self):
         # Uniform Refinements 10 of the base mesh ran 78 s and died with std::bad_alloc. Here 40 x 20 cells
-        # refined 10 times (1.7e9 elements) need about 17 TB.
+        # refined 10 times (1.7e9 elements) need about 11 TB.
         self.deck(('name="Uniform Refinements" type="int" value="0"', 'name="Uniform Refinements" type="int" '
                    'value="10"'), ('Length" type="int" value="4"', 'Length" type="int" value="40"'),
                   ('Width" type="int" value="2"', 'Width" type="int" value="20"'))

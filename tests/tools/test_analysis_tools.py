@@ -3,7 +3,7 @@
 
 * tools/scaling.py: the weak study keeps 16 000 elements per core for every power of 2 (the paper's §6.4 strip,
   200 x 40 cells of two triangles, refined x4 per cores x4 and doubled along the length in between); the strong
-  sizes map to the refinements of the same strip.
+  sizes map to the refinements of the same strip; the size study's strips keep its aspect (10 w^2 elements).
 * tools/fracture_summary.py: the length of the edge two P2 (or P1) elements share, measured along the edge's
   quadratic curve. For a straight edge whose mid-side node sits anywhere strictly inside it the curve runs
   monotonically along the chord, so the length is the chord exactly (the speed |x'(s)| is linear in s, which
@@ -41,6 +41,12 @@ class WeakAndStrongSizes(unittest.TestCase):
         self.assertEqual(scaling.cells_for_size(16000), (200, 40))
         self.assertEqual(scaling.cells_for_size(64000), (400, 80))
         self.assertEqual(scaling.cells_for_size(256000), (800, 160))
+
+    def test_size_study_strips_keep_the_aspect(self):
+        # 10 w^2 elements: 5 w x w cells of two triangles (the 200 x 40 strip's aspect, 686 440 ~ the A319 size)
+        self.assertEqual(scaling.cells_for_strip(16000), (200, 40))
+        self.assertEqual(scaling.cells_for_strip(686440), (1310, 262))
+        self.assertIsNone(scaling.cells_for_strip(687000))
 
 
 def tri6(v0, v1, v2, m01=None, m12=None, m20=None):

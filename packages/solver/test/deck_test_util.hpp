@@ -22,7 +22,9 @@
 
 namespace shellfrac::test {
 
-/// A fresh working directory <name>.np<size> (tests at several np may run at the same time). Collective.
+/// A fresh working directory <name>.np<size> (tests at several np may run at the same time). The name must be
+/// unique over all test executables: ctest runs them in parallel, and a second user would remove the first's files.
+/// Collective.
 inline std::string work_dir(const std::string& name) {
   namespace fs = std::filesystem;
   const std::string dir = name + ".np" + std::to_string(parallel::size());

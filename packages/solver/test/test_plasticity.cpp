@@ -96,7 +96,7 @@ TEST(Plasticity, PlaneStrainBendingFollowsThePointLaw) {
 }
 
 TEST(Plasticity, CylindricalPanel) {
-  const auto dir = work_dir("panel");
+  const auto dir = work_dir("plastic_panel");
   const auto deck = example_deck("cylindrical_panel.xml", dir);
   write_deck(dir + "/panel.xml", *deck);
   solver::Simulation sim(dir + "/panel.xml");

@@ -106,7 +106,7 @@ void run_and_check(const std::string& deck_path, const mesh::SerialMesh& expecte
 }  // namespace
 
 TEST(Run, GeneratedCylindricalPanel) {
-  const auto dir = work_dir("panel");
+  const auto dir = work_dir("run_panel");
   write_deck(dir + "/panel.xml", *panel_deck("shell", dir));
   auto expected = mesh::make_cylindrical_panel(2.9375, 12.56, 120 * M_PI / 180, 16, 6);
   mesh::promote_to_p2(expected);

@@ -1,5 +1,7 @@
 #include "shellfrac/core/parallel.hpp"
 
+#include <sys/resource.h>
+
 #include <exception>
 
 #include "shellfrac/core/error.hpp"
@@ -128,5 +130,11 @@ template std::vector<char> all_gather(const std::vector<char>&, MPI_Comm);
 template std::vector<int> all_gather(const std::vector<int>&, MPI_Comm);
 template std::vector<std::int64_t> all_gather(const std::vector<std::int64_t>&, MPI_Comm);
 template std::vector<double> all_gather(const std::vector<double>&, MPI_Comm);
+
+std::vector<double> peak_resident_bytes(MPI_Comm comm) {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return all_gather(std::vector<double>{1024.0 * double(usage.ru_maxrss)}, comm);  // ru_maxrss is in kB on Linux
+}
 
 }  // namespace shellfrac::parallel

@@ -106,4 +106,7 @@ double max(double local, MPI_Comm comm = MPI_COMM_WORLD);
 template <class T>
 std::vector<T> all_gather(const std::vector<T>& local, MPI_Comm comm = MPI_COMM_WORLD);
 
+/// The peak resident memory of each rank so far [bytes] (getrusage), in rank order, on every rank. Collective.
+std::vector<double> peak_resident_bytes(MPI_Comm comm = MPI_COMM_WORLD);
+
 }  // namespace shellfrac::parallel

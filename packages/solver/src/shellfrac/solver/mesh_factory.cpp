@@ -112,10 +112,10 @@ MeshParams MeshParams::from_parameters(Teuchos::ParameterList& pl, const params:
 namespace {
 
 /// Memory the run will need on one node [bytes]: per rank, the model's share of the elements, the mesh that
-/// every rank holds during set-up, and the program itself (measured peaks: 10 kB per element on 1 rank, 5.1 kB
-/// per rank on 2; docs/performance.md).
+/// every rank holds during set-up, and the program itself (measured peaks of fracture runs with plasticity and
+/// checkpoints: 5.7 kB per element over 2 ranks at 650 000 to 690 000 elements; docs/performance.md).
 double estimated_node_bytes(double elements, int ranks, int ranks_on_node) {
-  const double per_rank = elements * (10e3 / ranks + 0.25e3) + 60e6;
+  const double per_rank = elements * (6e3 / ranks + 0.25e3) + 60e6;
   return per_rank * ranks_on_node;
 }
 

@@ -6,7 +6,6 @@
 #include <csignal>
 #include <iostream>
 #include <optional>
-#include <sys/resource.h>
 #include <sstream>
 
 #include "shellfrac/core/error.hpp"
@@ -266,12 +265,9 @@ void Simulation::check_time_step() {
   model_.warnings.push_back(os.str());
 }
 
-// Peak resident memory of each rank so far (getrusage; kB on Linux): the largest, its rank, and the sum.
+// Peak resident memory of each rank so far: the largest, its rank, and the sum.
 void Simulation::record_peak_memory() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  const double mine = 1024.0 * double(usage.ru_maxrss);
-  const std::vector<double> all = parallel::all_gather(std::vector<double>{mine}, comm_);
+  const std::vector<double> all = parallel::peak_resident_bytes(comm_);
   const auto largest = std::max_element(all.begin(), all.end());
   summary_.peak_memory_max = *largest, summary_.peak_memory_rank = int(largest - all.begin());
   summary_.peak_memory_sum = 0;
