@@ -327,6 +327,17 @@ class Reliability(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("13 steps", r.stdout)
 
+    def test_exact_output_times_with_an_interval_below_the_step_is_refused(self):
+        # Every step would be shortened to the interval: a run of 1e297 steps.
+        self.deck(('value="1e-3"', 'value="1e-300"'),
+                  ('<Parameter name="Output Interval"', '<Parameter name="Exact Output Times" type="bool" value="true"/>'
+                                                        '\n    <Parameter name="Output Interval"'))
+        r = run(["base.xml"], self.dir, timeout=60)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertRegex(r.stderr, r"base.xml: 'Time Integration->Exact Output Times' with an Output Interval of "
+                                   r"1e-300, below the time step [0-9.e+-]+, would shorten every step")
+        self.assertFalse(os.path.exists(self.path("base_history.csv")))
+
     def test_a_mesh_too_large_for_the_memory_is_refused_before_it_is_built(self):
         # Uniform Refinements 10 of the base mesh ran 78 s and died with std::bad_alloc. Here 40 x 20 cells
         # refined 10 times (1.7e9 elements) need about 11 TB.

@@ -4,9 +4,14 @@
 //    it separates at ~11.0 us) with a checkpoint, then restarted to 14 us: the resumed history file and the
 //    final nodal and element fields must equal the continuous run's bitwise.
 //  * On 3 ranks also across rank counts: written on 3 ranks and restarted on 2, written on 1 and restarted on 3.
+//  * ExactOutputTimesLandOnEveryFrameAndEndTime: with Exact Output Times and an Output Interval I = 2^-18 s (so
+//    that its multiples are exact in binary), every frame is at k I exactly and the last at End Time (14 us, not a
+//    multiple), though the time step divides neither; a run split at 3 I (an output time, where both runs land)
+//    continues bitwise as above.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -24,12 +29,21 @@ namespace {
 
 constexpr double h = strip_h;
 
+/// The output settings of a run.
+struct Frames {
+  double interval = 3.5e-6;
+  bool exact = false;  ///< Exact Output Times
+  int history = 5;     ///< History Interval (a split run also writes a row at its last step)
+};
+
 /// The strip's deck (cracked_strip.hpp, mesh in the parent directory) run to `end_time` with checkpointing (Step
 /// Interval 100 000), plasticity with shear yield (gam^p is state too) and the breakable edge; probe x_max.
-Teuchos::RCP<Teuchos::ParameterList> strip_deck(const std::string& dir, double end_time) {
+Teuchos::RCP<Teuchos::ParameterList> strip_deck(const std::string& dir, double end_time, Frames frames = {}) {
   auto deck = pulled_strip_deck(dir, "../strip_mesh.exo", {h, 2693, 68.9e9, 0.0});
   auto& time = deck->sublist("Time Integration");
-  time.set("End Time", end_time), time.set("History Interval", 5), time.set("Output Interval", 3.5e-6);
+  time.set("End Time", end_time), time.set("History Interval", frames.history);
+  time.set("Output Interval", frames.interval);
+  time.set("Exact Output Times", frames.exact);
   deck->sublist("Checkpoint").set("Step Interval", 100000);
   auto& material = shell_material(*deck);
   material.set("Model", std::string("Resultant Plasticity")), material.set("Yield Stress", 280e6);
@@ -40,8 +54,8 @@ Teuchos::RCP<Teuchos::ParameterList> strip_deck(const std::string& dir, double e
 }
 
 /// Runs the strip to 14 us in `dir` on `comm` without a break (the reference).
-void continuous(const std::string& dir, MPI_Comm comm) {
-  write_deck(dir + "/run.xml", *strip_deck(dir, 14e-6), comm);
+void continuous(const std::string& dir, MPI_Comm comm, Frames frames = {}) {
+  write_deck(dir + "/run.xml", *strip_deck(dir, 14e-6, frames), comm);
   solver::Simulation(dir + "/run.xml", comm).run();
 }
 
@@ -59,16 +73,16 @@ std::string checkpoint_in(const std::string& dir) {
   return found;
 }
 
-/// Runs to 10.5 us on `first`, then restarts the same deck to 14 us on `second` (either may be MPI_COMM_NULL on
-/// ranks outside it). Collective over MPI_COMM_WORLD.
-void broken_run(const std::string& dir, MPI_Comm first, MPI_Comm second) {
-  write_deck(dir + "/run.xml", *strip_deck(dir, 10.5e-6));
+/// Runs to `split` (10.5 us) on `first`, then restarts the same deck to 14 us on `second` (either may be
+/// MPI_COMM_NULL on ranks outside it). Collective over MPI_COMM_WORLD.
+void broken_run(const std::string& dir, MPI_Comm first, MPI_Comm second, Frames frames = {}, double split = 10.5e-6) {
+  write_deck(dir + "/run.xml", *strip_deck(dir, split, frames));
   if (first != MPI_COMM_NULL) {
     const auto s = solver::Simulation(dir + "/run.xml", first).run();
     EXPECT_EQ(s.restart_step, -1);
   }
   MPI_Barrier(MPI_COMM_WORLD);
-  write_deck(dir + "/run.xml", *strip_deck(dir, 14e-6));
+  write_deck(dir + "/run.xml", *strip_deck(dir, 14e-6, frames));
   if (second != MPI_COMM_NULL) {
     solver::Simulation sim(dir + "/run.xml", second, checkpoint_in(dir));
     EXPECT_GT(sim.summary().restart_step, 0);
@@ -143,3 +157,20 @@ TEST(Restart, ContinuesBitwiseThroughCrackActivation) {
     if (self != MPI_COMM_NULL) MPI_Comm_free(&self);
   }
 }
+
+TEST(Restart, ExactOutputTimesLandOnEveryFrameAndEndTime) {
+  const auto root = work_dir("exact_output_times");
+  if (parallel::rank() == 0) write_cracked_strip(root + "/strip_mesh.exo");
+  const Frames frames{std::ldexp(1.0, -18), true, 1};  // I = 3.814697265625e-06 s: k I is exact in binary
+  const auto ref = fresh(root + "/continuous"), split = fresh(root + "/split");
+  continuous(ref, MPI_COMM_WORLD, frames);
+  if (parallel::rank() == 0) {
+    const auto r = io::read_results(ref + "/run.exo");  // one file, or the per-rank set
+    ASSERT_EQ(r.times.size(), 5u);  // 0, I, 2I, 3I, End Time
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(r.times[std::size_t(k)], k * frames.interval) << "frame " << k;
+    EXPECT_EQ(r.times.back(), 14e-6);
+  }
+  broken_run(split, MPI_COMM_WORLD, MPI_COMM_WORLD, frames, 3 * frames.interval);
+  expect_same(ref, split, "Exact Output Times, split at an output time");
+}
+

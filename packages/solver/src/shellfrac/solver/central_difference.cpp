@@ -189,8 +189,7 @@ void CentralDifference::start(ShellState& s) {
   Kokkos::parallel_for("shellfrac::StartAccelerations", KernelRange(0, model_.owned), accelerate);
 }
 
-void CentralDifference::step(ShellState& s, double dt) {
-  const double t1 = s.time + dt;
+void CentralDifference::step(ShellState& s, double dt, double t1) {
   {
     ScopedTimer timer(times_.update);
     remember_step_start(s);

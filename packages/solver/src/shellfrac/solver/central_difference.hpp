@@ -32,9 +32,10 @@ class CentralDifference {
   /// Start-up (docs/theory.md §7.4): forces, loads, accelerations and reactions of the initial state.
   /// Collective.
   void start(ShellState& s);
-  /// One step t_n -> t_n + dt. NumericalError (on every rank) if the state becomes non-finite; Error if a
-  /// plastic return map fails. Collective.
-  void step(ShellState& s, double dt);
+  /// One step from t_n = s.time to t1 = t_n + dt (t1 given, so that a shortened step ends exactly on it).
+  /// NumericalError (on every rank) if the state becomes non-finite; Error if a plastic return map fails.
+  /// Collective.
+  void step(ShellState& s, double dt, double t1);
   /// Static relaxation: whether the last step reached the static equilibrium, and its relative residual
   /// (NaN before the first test).
   bool relaxed() const { return relaxed_; }

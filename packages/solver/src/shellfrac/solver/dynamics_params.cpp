@@ -59,6 +59,12 @@ Teuchos::RCP<const Teuchos::ParameterList> TimeParams::valid_parameters() {
   pl->set("Output Interval", 0.0, "Time between Exodus outputs [time]; 0 = first and last step only",
           params::non_negative_double());
   pl->set("History Interval", 1, "Steps between rows of the history CSV", params::int_range(1, 1 << 30));
+  pl->set("Exact Output Times", false,
+          "Shorten the step that would pass an output time (a multiple of Output Interval, or End Time) so that it "
+          "ends on it: frames at the exact output times and a last frame at End Time. The step sequence then depends "
+          "on the output settings: a restart with another Output Interval does not continue bitwise like the "
+          "uninterrupted run. false: frames at the step nearest each output time, a step sequence independent of the "
+          "output");
   pl->set("Static Relaxation", false,
           "Find the static equilibrium by dynamic relaxation: all free velocities are set to zero at every peak of the "
           "kinetic energy (the removed energy is booked as damping), and the run stops, before End Time, once the "
@@ -90,6 +96,7 @@ TimeParams TimeParams::from_parameters(Teuchos::ParameterList& pl, const params:
   t.maximum_steps = pl.get<double>("Maximum Steps");
   t.output_interval = pl.get<double>("Output Interval");
   t.history_interval = pl.get<int>("History Interval");
+  t.exact_output_times = pl.get<bool>("Exact Output Times");
   t.mass_damping = pl.get<double>("Mass Damping");
   t.static_relaxation = pl.get<bool>("Static Relaxation");
   t.relaxation_tolerance = pl.get<double>("Relaxation Tolerance");

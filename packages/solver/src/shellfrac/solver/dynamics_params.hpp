@@ -31,6 +31,7 @@ struct TimeParams {
   double rotary_inertia_scale = 1.0;  ///< s_I >= 1 scales the rotary inertia rho h^3/12 (mass scaling)
   double maximum_steps = 1e8;    ///< refuse a run planned longer (absurd time steps)
   double output_interval = 0.0;  ///< time between Exodus outputs; 0 = first and last step only
+  bool exact_output_times = false;  ///< steps shortened to end on the output times and on End Time
   int history_interval = 1;      ///< steps between history rows
   double mass_damping = 0.0;     ///< alpha of the damping force alpha m v (dynamic relaxation); 0 = none
   bool static_relaxation = false;  ///< find the static state: kinetic-energy peak resets, stop on the residual

@@ -98,7 +98,13 @@ double ShellDynamics::stable_time_step() const { return impl_->model.stable_dt; 
 double ShellDynamics::time_step() const { return impl_->dt; }
 double ShellDynamics::time() const { return impl_->state.time; }
 long ShellDynamics::step_count() const { return impl_->state.step; }
-void ShellDynamics::step() { impl_->integrator.step(impl_->state, impl_->dt); }
+void ShellDynamics::step() { impl_->integrator.step(impl_->state, impl_->dt, impl_->state.time + impl_->dt); }
+void ShellDynamics::step_to(double t1) {
+  const double dt = t1 - impl_->state.time;
+  SHELLFRAC_REQUIRE(dt > 0 && dt <= impl_->dt * (1 + 1e-6), "step_to(" << t1 << ") from t = " << impl_->state.time
+                                                                       << " with the time step " << impl_->dt);
+  impl_->integrator.step(impl_->state, dt, t1);
+}
 const PhaseTimes& ShellDynamics::phase_times() const { return impl_->times; }
 bool ShellDynamics::fracture() const { return impl_->fracture.enabled(); }
 bool ShellDynamics::relaxed() const { return impl_->integrator.relaxed(); }

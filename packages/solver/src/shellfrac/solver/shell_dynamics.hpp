@@ -49,6 +49,9 @@ class ShellDynamics {
   long step_count() const;
   /// Advances one step. Throws NumericalError (on every rank) if the state becomes non-finite. Collective.
   void step();
+  /// Advances one step that ends exactly at t1, after the current time and at most one time step later (a step
+  /// shortened to land on an output time). Collective.
+  void step_to(double t1);
   /// Global energies of the current state, summed in global-id order. Collective.
   StepRecord record() const;
   /// Node-set probes: for each entry of `members` (a flag per mesh node), the mean displacement (3) and

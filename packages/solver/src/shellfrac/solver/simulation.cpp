@@ -55,10 +55,18 @@ namespace {
 /// within half a step of the next output time.
 class OutputSchedule {
  public:
-  OutputSchedule(const TimeParams& tp) : interval_(tp.output_interval > 0 ? tp.output_interval : tp.end_time) {
+  OutputSchedule(const TimeParams& tp)
+      : interval_(tp.output_interval > 0 ? tp.output_interval : tp.end_time), end_(tp.end_time) {
     next_ = interval_;
   }
   bool due(double t, double dt) const { return t >= next_ - 0.5 * dt; }
+  /// Where a step from t of the time step dt must end to land on the next output time or on End Time (Exact
+  /// Output Times), or 0 if a whole step passes neither. An output time within 1e-6 dt of End Time is End Time
+  /// (no sliver of a step between them); a step that ends within 1e-9 dt of a target lands on it.
+  double landing(double t, double dt) const {
+    const double target = next_ < end_ - 1e-6 * dt ? next_ : end_;
+    return t + dt * (1 + 1e-9) >= target ? target : 0.0;
+  }
   /// Moves the next output time past t (the same sums whether the run started at 0 or restarted). An interval
   /// far below the time step gives a frame at every step instead of a loop that (almost) never ends.
   void pass(double t, double dt) {
@@ -71,7 +79,7 @@ class OutputSchedule {
   }
 
  private:
-  double interval_, next_;
+  double interval_, end_, next_;
 };
 
 enum class CheckpointAction { none, write, write_and_stop };
@@ -246,6 +254,11 @@ void Simulation::check_time_step() {
   SHELLFRAC_INPUT_REQUIRE(std::isnormal(dt), deck_.file << ": the time step " << dt << " is zero or below the "
                                                         << "smallest normal number: " << setter << " has the stable "
                                                         << "step " << survey.min_dt << "; check the units");
+  SHELLFRAC_INPUT_REQUIRE(!tp.exact_output_times || tp.output_interval == 0 || tp.output_interval >= dt,
+                          deck_.file << ": 'Time Integration->Exact Output Times' with an Output Interval of "
+                                     << tp.output_interval << ", below the time step " << dt
+                                     << ", would shorten every step to the interval; raise the Output Interval or "
+                                        "turn Exact Output Times off");
   const double planned = (tp.end_time - dyn.time()) / dt;
   SHELLFRAC_INPUT_REQUIRE(planned <= tp.maximum_steps,
                           deck_.file << ": the run would take " << planned << " steps (End Time " << tp.end_time
@@ -313,10 +326,16 @@ RunSummary Simulation::run() {
   const bool checkpointing = deck_.checkpoint.step_interval > 0 || deck_.checkpoint.wall_minutes > 0;
   std::optional<io::CheckpointData> last_good;
   if (!checkpointing) last_good = io::built(dyn.checkpoint());
-  // Stop when the next step would overshoot the end time by more than half a step.
-  while (dyn.time() + 0.5 * dyn.time_step() < tp.end_time) {
+  // Stop when the next step would overshoot the end time by more than half a step; with Exact Output Times the
+  // steps that would pass an output time or End Time are shortened to end on it.
+  const bool exact = tp.exact_output_times;
+  while (exact ? dyn.time() < tp.end_time : dyn.time() + 0.5 * dyn.time_step() < tp.end_time) {
     try {
-      dyn.step();
+      const double land = exact ? frames.landing(dyn.time(), dyn.time_step()) : 0.0;
+      if (land > 0)
+        dyn.step_to(land);
+      else
+        dyn.step();
     } catch (const NumericalError& e) {
       throw NumericalError(stop_at_blow_up(e, checkpoints, out, last_good, on_disk));
     }
