@@ -3,9 +3,9 @@
 //  * WritesSortedRowsOnceAndReadsThemBack: each rank writes an interleaved share of the ids (rank r the ids
 //    r, r + np, ...; id 0 also from every rank, as an interface two ranks hold); the file holds every id once,
 //    sorted; read whole on every rank, the table equals the generator bitwise.
-//  * EachRankReceivesOnlyTheRowsItAsksFor: read with a per-rank list of ids (some absent from the file), a rank
-//    gets exactly the rows of the listed ids the file has, sorted, and nothing else: no rank but the reader
-//    holds the whole table (docs/parallel.md).
+//  * EachRankReceivesOnlyTheRowsItAsksFor: read with a per-rank list of ids (some absent from the file, some on
+//    both sides of the reader's block boundaries), a rank gets exactly the rows of the listed ids the file has,
+//    sorted, and nothing else: no rank but the reader sees a row it did not ask for (docs/parallel.md).
 //  * TheChecksumCoversEveryTable: a value changed in the file (through HDF5, so the chunk checksums stay
 //    valid) is refused by the file checksum.
 #include <gtest/gtest.h>
@@ -79,12 +79,14 @@ TEST(Checkpoint, EachRankReceivesOnlyTheRowsItAsksFor) {
   const std::string path = file_name("rows");
   io::write_checkpoint(path, share(), MPI_COMM_WORLD);
   const int r = parallel::rank();
-  // Rank r asks for ids 7r .. 7r + 20 in decreasing order and for two ids the file does not have.
-  std::vector<GlobalId> ask{num_ids + 5, -3};
+  // Rank r asks for ids 7r .. 7r + 20 in decreasing order, for the ids on both sides of the first two block
+  // boundaries of the reader (16 384 rows a block), and for two ids the file does not have.
+  std::vector<GlobalId> ask{num_ids + 5, -3, 32768 + r, 32767 - r, 16384 + r, 16383 - r};
   for (GlobalId id = 7 * r + 20; id >= 7 * r; --id) ask.push_back(id);
   const auto d = io::read_checkpoint(path, MPI_COMM_WORLD, {{"elements", ask}});
   std::vector<GlobalId> expected;
   for (GlobalId id = 7 * r; id <= 7 * r + 20; ++id) expected.push_back(id);
+  for (const GlobalId id : {16383 - r, 16384 + r, 32767 - r, 32768 + r}) expected.push_back(id);
   expect_rows(d.tables.at("elements"), expected);
   EXPECT_EQ(d.tables.at("empty").width, 3);  // not asked for: whole (empty)
 }

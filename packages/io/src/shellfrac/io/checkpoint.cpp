@@ -131,11 +131,6 @@ class Checksum {
   void add_rows(const double* values, std::size_t rows, int width) {
     d_.add_bytes(values, sizeof(double) * rows * std::size_t(width));
   }
-  void add_values(const std::vector<double>& values, int width) {
-    const std::size_t rows = width > 0 ? values.size() / std::size_t(width) : 0;
-    for (std::size_t r = 0; r < rows; r += rows_per_chunk)
-      add_rows(values.data() + r * std::size_t(width), std::min<std::size_t>(rows_per_chunk, rows - r), width);
-  }
   std::string hex() const { return d_.hex(); }
 
  private:
@@ -293,13 +288,16 @@ class FileReader {
   const CheckpointData& header() const { return header_; }
   const std::vector<std::string>& table_names() const { return table_names_; }
 
-  /// Table `name` (the names in table_names() order).
-  CheckpointTable table(const std::string& name) {
+  /// Starts reading table `name` (the names in table_names() order): its width and ids (the ids are also left in
+  /// t.values empty); its values follow by read_rows, in order.
+  CheckpointTable begin_table(const std::string& name) {
+    values_ = Handle(-1, H5Dclose);
+    table_name_ = name, rows_read_ = 0;
     Handle g(H5Gopen2(tables_.id, name.c_str(), H5P_DEFAULT), H5Gclose);
     Handle ids(H5Dopen2(g.id, "ids", H5P_DEFAULT), H5Dclose);
-    Handle vals(H5Dopen2(g.id, "values", H5P_DEFAULT), H5Dclose);
-    if (ids.id < 0 || vals.id < 0) throw InputError(path_ + ": table " + name + " lacks ids or values");
-    Handle s1(H5Dget_space(ids.id), H5Sclose), s2(H5Dget_space(vals.id), H5Sclose);
+    values_ = Handle(H5Dopen2(g.id, "values", H5P_DEFAULT), H5Dclose);
+    if (ids.id < 0 || values_.id < 0) throw InputError(path_ + ": table " + name + " lacks ids or values");
+    Handle s1(H5Dget_space(ids.id), H5Sclose), s2(H5Dget_space(values_.id), H5Sclose);
     hsize_t n = 0, dims[2] = {0, 0};
     if (H5Sget_simple_extent_ndims(s1.id) != 1 || H5Sget_simple_extent_ndims(s2.id) != 2)
       throw InputError(path_ + ": table " + name + " has the wrong shape");
@@ -307,15 +305,27 @@ class FileReader {
     H5Sget_simple_extent_dims(s2.id, dims, nullptr);
     if (dims[0] != n) throw InputError(path_ + ": table " + name + ": ids and values differ in length");
     CheckpointTable t;
-    t.width = static_cast<int>(dims[1]);
-    t.ids.resize(n), t.values.resize(n * dims[1]);
-    if ((n > 0 && H5Dread(ids.id, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, t.ids.data()) < 0) ||
-        (!t.values.empty() && H5Dread(vals.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, t.values.data()) < 0))
+    t.width = width_ = static_cast<int>(dims[1]);
+    t.ids.resize(n);
+    if (n > 0 && H5Dread(ids.id, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, t.ids.data()) < 0)
       throw InputError(path_ + ": unreadable table " + name + " (a chunk fails its checksum: the file is corrupt)");
     if (!std::is_sorted(t.ids.begin(), t.ids.end())) throw InputError(path_ + ": table " + name + " is not sorted");
     checksum_.add_table(name, t.width, t.ids);
-    checksum_.add_values(t.values, t.width);
     return t;
+  }
+  /// The next `n` rows of the table begun last into out (n * width values); whole chunks except at the end.
+  void read_rows(std::size_t n, double* out) {
+    if (width_ == 0 || n == 0) return;
+    const hsize_t start[2] = {rows_read_, 0}, count[2] = {n, hsize_t(width_)};
+    Handle file_space(H5Dget_space(values_.id), H5Sclose);
+    Handle memory(H5Screate_simple(2, count, nullptr), H5Sclose);
+    if (H5Sselect_hyperslab(file_space.id, H5S_SELECT_SET, start, nullptr, count, nullptr) < 0 ||
+        H5Dread(values_.id, H5T_NATIVE_DOUBLE, memory.id, file_space.id, H5P_DEFAULT, out) < 0)
+      throw InputError(path_ + ": unreadable table " + table_name_ +
+                       " (a chunk fails its checksum: the file is corrupt)");
+    for (std::size_t r = 0; r < n; r += rows_per_chunk)
+      checksum_.add_rows(out + r * std::size_t(width_), std::min<std::size_t>(rows_per_chunk, n - r), width_);
+    rows_read_ += n;
   }
   /// After every table: the contents against the stored checksum.
   void verify() const {
@@ -331,6 +341,10 @@ class FileReader {
   CheckpointData header_;
   std::vector<std::string> table_names_;
   Checksum checksum_;
+  Handle values_{-1, H5Dclose};  // the values of the table being read
+  std::string table_name_;
+  int width_ = 0;
+  hsize_t rows_read_ = 0;
 };
 
 // Point-to-point transfers of long vectors (MPI counts are int: sent in pieces of 2^27 values).
@@ -604,10 +618,12 @@ void write_checkpoint(const std::string& path, const CheckpointData& local, MPI_
   throw Error(error);
 }
 
-// Rank 0 reads one table at a time and sends every rank the rows it asks for (`wanted`; a table not asked for
-// goes whole to every rank), so that no other rank ever holds more than its own rows.
-CheckpointData read_checkpoint(const std::string& path, MPI_Comm comm,
-                               const std::map<std::string, std::vector<GlobalId>>& wanted) {
+// Rank 0 reads one table at a time, a block of rows_per_block rows at a time, and sends every rank the rows of each
+// block that it asks for (`wanted`; a table not asked for goes whole to every rank): no rank but rank 0 ever sees a
+// row it did not ask for, and each rank holds one table of its rows at a time.
+void read_checkpoint(const std::string& path, MPI_Comm comm, const WantedRows& wanted,
+                     const std::function<void(const CheckpointData& header)>& header,
+                     const std::function<void(const std::string& name, const CheckpointTable& rows)>& table) {
   const int me = parallel::rank(comm), np = parallel::size(comm);
   std::unique_ptr<FileReader> reader;
   CheckpointData d;
@@ -631,51 +647,102 @@ CheckpointData read_checkpoint(const std::string& path, MPI_Comm comm,
       for (auto n = deserialize_header(r, d); n > 0; --n) names.push_back(r.get_string());
     }
   }
+  header(d);
   for (const auto& name : names) {
-    CheckpointTable table;
-    parallel::on_root_then_agree([&] { table = reader->table(name); }, 0, comm);
-    const auto ask = wanted.find(name);
-    if (ask == wanted.end()) {  // the whole table to every rank
-      parallel::ByteWriter w;
-      if (me == 0) w.put(std::int64_t(table.width)), w.put_vector(table.ids), w.put_vector(table.values);
-      parallel::broadcast(w.buffer(), 0, comm);
-      if (me != 0) {
-        parallel::ByteReader r(w.buffer());
-        table.width = static_cast<int>(r.get<std::int64_t>());
-        table.ids = r.get_vector<GlobalId>(), table.values = r.get_vector<double>();
-      }
-      d.tables[name] = std::move(table);
-      continue;
+    // The ids each rank asks for, sorted and unique; a table nobody names goes whole to every rank.
+    const std::vector<GlobalId>* ask = wanted(name);
+    const bool whole = ask == nullptr;
+    std::vector<GlobalId> mine_asked;
+    if (!whole) {
+      mine_asked = *ask;
+      std::sort(mine_asked.begin(), mine_asked.end());
+      mine_asked.erase(std::unique(mine_asked.begin(), mine_asked.end()), mine_asked.end());
     }
-    // The rows of the ids a rank asks for (those the file has), sorted by id.
-    const auto rows_for = [&](std::vector<GlobalId> ids, CheckpointTable& out) {
-      std::sort(ids.begin(), ids.end());
-      ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-      out.width = table.width;
-      for (const GlobalId id : ids) {
-        const double* row = table.row(id);
-        if (!row) continue;
-        out.ids.push_back(id);
-        out.values.insert(out.values.end(), row, row + table.width);
+    SHELLFRAC_REQUIRE(!(parallel::any(whole, comm) && parallel::any(!whole, comm)),
+                      "checkpoint " << path << ": table " << name << " is asked for by some ranks only");
+    std::vector<std::vector<GlobalId>> asked(static_cast<std::size_t>(np));
+    if (!whole) {
+      if (me == 0) {
+        asked[0] = std::move(mine_asked);
+        for (int r = 1; r < np; ++r) asked[std::size_t(r)] = receive_vector<std::int64_t>(r, comm);
+      } else {
+        send_vector(mine_asked, 0, comm);
       }
-    };
-    CheckpointTable mine;
-    if (me == 0) {
-      for (int r = 1; r < np; ++r) {
-        CheckpointTable theirs;
-        rows_for(receive_vector<std::int64_t>(r, comm), theirs);
-        const std::vector<std::int64_t> width{theirs.width};
-        send_vector(width, r, comm), send_vector(theirs.ids, r, comm), send_vector(theirs.values, r, comm);
-      }
-      rows_for(ask->second, mine);
-    } else {
-      send_vector(ask->second, 0, comm);
-      mine.width = static_cast<int>(receive_vector<std::int64_t>(0, comm).at(0));
-      mine.ids = receive_vector<std::int64_t>(0, comm), mine.values = receive_vector<double>(0, comm);
     }
-    d.tables[name] = std::move(mine);
+    CheckpointTable ids;  // rank 0: the file's ids and width
+    parallel::on_root_then_agree([&] { ids = reader->begin_table(name); }, 0, comm);
+    std::int64_t shape[2] = {ids.width, std::int64_t(ids.ids.size())};
+    MPI_Bcast(shape, 2, MPI_INT64_T, 0, comm);
+    CheckpointTable rows;  // this rank's rows of a block
+    rows.width = static_cast<int>(shape[0]);
+    const std::size_t num_rows = std::size_t(shape[1]), width = std::size_t(shape[0]);
+    std::vector<std::size_t> cursor(static_cast<std::size_t>(np), 0);
+    std::vector<double> block;
+    std::vector<GlobalId> block_ids;
+    for (std::size_t first = 0; first < num_rows; first += rows_per_block) {
+      const std::size_t n = std::min(rows_per_block, num_rows - first);
+      block.resize(n * width);
+      parallel::on_root_then_agree([&] { reader->read_rows(n, block.data()); }, 0, comm);
+      rows.ids.clear(), rows.values.clear();
+      if (whole) {  // every rank gets the block
+        block_ids.assign(n, 0);
+        if (me == 0) std::copy_n(ids.ids.begin() + std::ptrdiff_t(first), n, block_ids.begin());
+        SHELLFRAC_REQUIRE(MPI_Bcast(block_ids.data(), int(n), MPI_INT64_T, 0, comm) == MPI_SUCCESS &&
+                              MPI_Bcast(block.data(), int(n * width), MPI_DOUBLE, 0, comm) == MPI_SUCCESS,
+                          "checkpoint: broadcast of table " << name << " failed");
+        rows.ids = block_ids, rows.values = block;
+        table(name, rows);
+        continue;
+      }
+      if (me != 0) {  // this rank's rows of the block
+        rows.ids = receive_vector<std::int64_t>(0, comm);
+        rows.values = receive_vector<double>(0, comm);
+        table(name, rows);
+        continue;
+      }
+      // Rank 0: each rank's asked ids within the block (both sorted: one pass over each).
+      const auto begin = ids.ids.begin() + std::ptrdiff_t(first), end = begin + std::ptrdiff_t(n);
+      for (int r = 0; r < np; ++r) {
+        const auto& want = asked[std::size_t(r)];
+        std::size_t& c = cursor[std::size_t(r)];
+        std::vector<GlobalId> out_ids;
+        std::vector<double> out_values;
+        auto at = begin;
+        for (; c < want.size() && want[c] <= *(end - 1); ++c) {
+          at = std::lower_bound(at, end, want[c]);
+          if (at == end || *at != want[c]) continue;  // not in the file
+          const std::size_t row = std::size_t(at - begin);
+          out_ids.push_back(want[c]);
+          out_values.insert(out_values.end(), block.begin() + std::ptrdiff_t(row * width),
+                            block.begin() + std::ptrdiff_t((row + 1) * width));
+        }
+        if (r == 0)
+          rows.ids = std::move(out_ids), rows.values = std::move(out_values);
+        else
+          send_vector(out_ids, r, comm), send_vector(out_values, r, comm);
+      }
+      table(name, rows);
+    }
+    if (num_rows == 0) table(name, rows);  // an empty table is still one
   }
   parallel::on_root_then_agree([&] { reader->verify(); }, 0, comm);
+}
+
+CheckpointData read_checkpoint(const std::string& path, MPI_Comm comm,
+                               const std::map<std::string, std::vector<GlobalId>>& wanted) {
+  CheckpointData d;
+  const auto ask = [&](const std::string& name) -> const std::vector<GlobalId>* {
+    const auto it = wanted.find(name);
+    return it == wanted.end() ? nullptr : &it->second;
+  };
+  read_checkpoint(
+      path, comm, ask, [&](const CheckpointData& header) { d = header; },
+      [&](const std::string& name, const CheckpointTable& rows) {
+        CheckpointTable& t = d.tables[name];
+        t.width = rows.width;
+        t.ids.insert(t.ids.end(), rows.ids.begin(), rows.ids.end());
+        t.values.insert(t.values.end(), rows.values.begin(), rows.values.end());
+      });
   return d;
 }
 

@@ -10,9 +10,9 @@
 /// chunk size). The file uses the HDF5 1.10 format (checksummed superblock and object headers) and each table
 /// chunk carries a Fletcher32 checksum: a damaged file is refused on reading, never restarted from.
 ///
-/// Memory: rank 0 writes one table at a time and a block of rows at a time (it holds the table's ids and one block;
-/// the ranks read the rows of a block from their state when asked), and reads one table at a time (it holds that
-/// table); every other rank only ever holds its own rows (docs/parallel.md). Writing goes to `<path>.tmp`, renamed to `<path>`: a crash
+/// Memory: rank 0 writes and reads one table at a time and a block of rows at a time (it holds the table's ids and
+/// one block; when writing, the ranks read the rows of a block from their state when asked); every other rank only
+/// ever holds its own rows (docs/parallel.md). Writing goes to `<path>.tmp`, renamed to `<path>`: a crash
 /// while writing never destroys the previous checkpoint; a failed write is an OutputError naming the file.
 #include <mpi.h>
 
@@ -68,5 +68,17 @@ void write_checkpoint(const std::string& path, const CheckpointData& local, MPI_
 /// fails a checksum. Collective.
 CheckpointData read_checkpoint(const std::string& path, MPI_Comm comm,
                                const std::map<std::string, std::vector<GlobalId>>& wanted = {});
+
+/// The rows a rank asks for in table `name` (sorted or not), or null for the whole table.
+using WantedRows = std::function<const std::vector<GlobalId>*(const std::string& name)>;
+
+/// The same without keeping the tables: `header` gets the scalars and strings first (no tables; it may throw to
+/// refuse the file), then `rows` gets this rank's rows of each table (name order) a block at a time, sorted by id
+/// (one call per block of the file, possibly without rows), and they are dropped: rank 0 holds one block and the
+/// table's ids, the other ranks one block of their rows. The file's checksum is verified after the last table: if
+/// that throws (InputError), what `rows` did must not be used. Collective.
+void read_checkpoint(const std::string& path, MPI_Comm comm, const WantedRows& wanted,
+                     const std::function<void(const CheckpointData& header)>& header,
+                     const std::function<void(const std::string& name, const CheckpointTable& rows)>& rows);
 
 }  // namespace shellfrac::io

@@ -136,15 +136,16 @@ io::CheckpointData ShellDynamics::checkpoint() const {
   return data;
 }
 
-std::map<std::string, std::vector<GlobalId>> ShellDynamics::checkpoint_rows() const {
-  return solver::checkpoint_rows(impl_->model.dm, impl_->model.any_plastic);
-}
-
-void ShellDynamics::restore(const io::CheckpointData& data) {
+void ShellDynamics::restore(const std::string& file, const std::function<void(const io::CheckpointData&)>& check) {
   Impl& s = *impl_;
   // The time step stays the deck's (the same deck gives the same step, hence a bitwise continuation; a deck with
   // a smaller Time Step or Safety Factor continues a blown-up run from its last good state).
-  restore_state(data, s.file, s.model.dm, s.model.any_plastic, s.state);
+  StateRestore restore(file, s.model.dm, s.model.any_plastic, s.state);
+  io::read_checkpoint(
+      file, s.model.dm.comm(), [&](const std::string& table) { return restore.rows()(table); },
+      [&](const io::CheckpointData& header) { check(header), restore.header(header); },
+      [&](const std::string& name, const io::CheckpointTable& rows) { restore.table(name, rows); });
+  restore.finish();
   s.fracture.restore(s.state, s.model);
   s.assembly.exchange_state(s.state);
 }

@@ -8,6 +8,7 @@
 ///   interface kernel -> gather -> plasticity commit -> nucleation -> loads -> accelerations -> corrector.
 /// No force is ever summed across ranks and every global sum runs in global-id order, so results are bitwise
 /// identical for any number of ranks.
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -76,11 +77,11 @@ class ShellDynamics {
   /// The whole state needed to continue bitwise, as tables by element and interface global id
   /// (state_checkpoint.hpp). Each rank gives its owned rows. (Not collective.)
   io::CheckpointData checkpoint() const;
-  /// The checkpoint rows restore() reads on this rank (state_checkpoint.hpp: checkpoint_rows).
-  std::map<std::string, std::vector<GlobalId>> checkpoint_rows() const;
-  /// Restores a checkpoint written by checkpoint() on any rank count, then imports the ghosts' positions and
-  /// directors. InputError if the checkpoint does not belong to this mesh. Collective.
-  void restore(const io::CheckpointData& data);
+  /// Restores the checkpoint file `file` written by checkpoint() on any rank count, reading it one table at a time
+  /// (no rank holds more than one table of its rows): `check` first sees the file's scalars and strings and may
+  /// refuse it (throw, on every rank); then the state is restored and the ghosts' positions and directors
+  /// imported. InputError if the checkpoint does not belong to this mesh or fails its checksum. Collective.
+  void restore(const std::string& file, const std::function<void(const io::CheckpointData& header)>& check);
   /// Whether any edge of the mesh may break (Fracture; the same on every rank).
   bool fracture() const;
   /// Static Relaxation: whether the static equilibrium has been reached, and the last relative residual (NaN

@@ -194,17 +194,17 @@ Simulation::~Simulation() = default;
 // The checkpoint is read and checked against this deck and mesh before any output is written.
 void Simulation::restart_from_checkpoint() {
   const std::string& file = deck_.checkpoint.restart_from;
-  const auto data = io::read_checkpoint(file, comm_, model_.dynamics->checkpoint_rows());
-  const auto e0 = data.scalars.find("e0");
-  SHELLFRAC_INPUT_REQUIRE(e0 != data.scalars.end(), file << ": not a checkpoint of a shellfrac run (no 'e0')");
-  fingerprint_.check(data, file, allow_physics_change_);
   auto& dyn = *model_.dynamics;
-  dyn.restore(data);
+  dyn.restore(file, [&](const io::CheckpointData& header) {  // before any table is read into the state
+    const auto e0 = header.scalars.find("e0");
+    SHELLFRAC_INPUT_REQUIRE(e0 != header.scalars.end(), file << ": not a checkpoint of a shellfrac run (no 'e0')");
+    fingerprint_.check(header, file, allow_physics_change_);
+    restart_e0_ = e0->second;
+  });
   SHELLFRAC_INPUT_REQUIRE(dyn.time() + 0.5 * dyn.time_step() < deck_.time.end_time,
                           deck_.file << ": 'Time Integration->End Time' = " << deck_.time.end_time
                                      << " is not after the time " << dyn.time() << " of the checkpoint " << file
                                      << " (step " << dyn.step_count() << "): nothing to run; raise End Time");
-  restart_e0_ = e0->second;
   summary_.restart_step = dyn.step_count();
 }
 

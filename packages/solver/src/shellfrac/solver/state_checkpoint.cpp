@@ -1,6 +1,8 @@
 #include "shellfrac/solver/state_checkpoint.hpp"
 
 #include <algorithm>
+#include <functional>
+#include <utility>
 #include <memory>
 
 #include "shellfrac/core/error.hpp"
@@ -83,63 +85,97 @@ io::CheckpointData state_checkpoint(const ShellState& s, const decomposition::Di
   return d;
 }
 
-std::map<std::string, std::vector<GlobalId>> checkpoint_rows(const decomposition::DistributedMesh& dm, bool plastic) {
-  std::vector<GlobalId> elements, interfaces;
-  for (LocalId le = 0; le < dm.num_owned(); ++le) elements.push_back(dm.element_gid(le));
-  for (const auto& f : dm.interfaces()) interfaces.push_back(f.gid);
-  std::sort(interfaces.begin(), interfaces.end());
-  interfaces.erase(std::unique(interfaces.begin(), interfaces.end()), interfaces.end());
-  std::map<std::string, std::vector<GlobalId>> rows;
+CheckpointRows::CheckpointRows(const decomposition::DistributedMesh& dm, bool plastic) {
+  for (LocalId le = 0; le < dm.num_owned(); ++le) elements_.push_back(dm.element_gid(le));
+  for (const auto& f : dm.interfaces()) interfaces_.push_back(f.gid);
+  SHELLFRAC_REQUIRE(std::adjacent_find(interfaces_.begin(), interfaces_.end(), std::greater_equal<>()) ==
+                        interfaces_.end(),
+                    "the local interfaces are not sorted by global id");  // row k = local interface k
   ShellState none;
-  ShellState::visit_element_fields(none, [&](const char* name, const auto&) { rows[element_table(name)] = elements; });
-  if (plastic) rows["plastic"] = elements;
-  ShellState::visit_interface_fields(none, [&](const char* name, const auto&) { rows[interface_table(name)] = interfaces; });
-  return rows;
+  ShellState::visit_element_fields(none, [&](const char* name, const auto&) { of_[element_table(name)] = &elements_; });
+  if (plastic) of_["plastic"] = &elements_;
+  ShellState::visit_interface_fields(none, [&](const char* name, const auto&) { of_[interface_table(name)] = &interfaces_; });
 }
 
-void restore_state(const io::CheckpointData& d, const std::string& file, const decomposition::DistributedMesh& dm,
-                   bool plastic, ShellState& s) {
+const std::vector<GlobalId>* CheckpointRows::operator()(const std::string& table) const {
+  const auto it = of_.find(table);
+  return it == of_.end() ? nullptr : it->second;
+}
+
+std::vector<std::string> CheckpointRows::tables() const {
+  std::vector<std::string> names;
+  for (const auto& [name, ids] : of_) names.push_back(name);
+  return names;
+}
+
+StateRestore::StateRestore(std::string file, const decomposition::DistributedMesh& dm, bool plastic, ShellState& s)
+    : file_(std::move(file)), dm_(dm), s_(s), needed_(dm, plastic) {}
+
+void StateRestore::header(const io::CheckpointData& d) {
   const auto scalar = [&](const char* name) {
     const auto it = d.scalars.find(name);
-    SHELLFRAC_INPUT_REQUIRE(it != d.scalars.end(), file << ": the checkpoint has no '" << name << "'");
+    SHELLFRAC_INPUT_REQUIRE(it != d.scalars.end(), file_ << ": the checkpoint has no '" << name << "'");
     return it->second;
   };
-  const auto table = [&](const char* name, int width) -> const io::CheckpointTable& {
-    const auto it = d.tables.find(name);
-    SHELLFRAC_INPUT_REQUIRE(it != d.tables.end() && it->second.width == width,
-                            file << ": the checkpoint's table '" << name << "' is missing or has another width "
-                                 << "(written by another version or for another model?)");
-    return it->second;
-  };
-  SHELLFRAC_INPUT_REQUIRE(GlobalId(scalar("num_elements")) == dm.num_global_elements(),
-                          file << ": the checkpoint has " << GlobalId(scalar("num_elements")) << " elements, the mesh "
-                               << dm.num_global_elements());
-  s.time = scalar("time"), s.step = long(scalar("step"));
-  ShellState::visit_element_fields(s, [&](const char* name, auto& f) {
-    const auto& t = table(element_table(name).c_str(), field_width(f));
-    for (LocalId le = 0; le < dm.num_owned(); ++le) {
-      const double* r = t.row(dm.element_gid(le));
-      SHELLFRAC_INPUT_REQUIRE(r, file << ": the checkpoint has no " << name << " for element " << dm.element_gid(le) + 1);
-      read_row(f, le, r);
-    }
-  });
-  if (plastic) {
-    const auto& pl = table("plastic", nq * plastic_state_values);
-    for (LocalId le = 0; le < dm.num_owned(); ++le) {
-      const double* p = pl.row(dm.element_gid(le));
-      SHELLFRAC_INPUT_REQUIRE(p, file << ": the checkpoint has no plastic state for element " << dm.element_gid(le) + 1);
-      for (int q = 0; q < nq; ++q, p += plastic_state_values) unpack_plastic_state(p, s.plastic[le * nq + q]);
-    }
+  SHELLFRAC_INPUT_REQUIRE(GlobalId(scalar("num_elements")) == dm_.num_global_elements(),
+                          file_ << ": the checkpoint has " << GlobalId(scalar("num_elements")) << " elements, the mesh "
+                                << dm_.num_global_elements());
+  s_.time = scalar("time"), s_.step = long(scalar("step"));
+}
+
+void StateRestore::table(const std::string& name, const io::CheckpointTable& rows) {
+  const std::vector<GlobalId>* ids = needed_(name);
+  if (!ids) return;  // a table of no state field
+  if (name != current_) {
+    finish_table();
+    current_ = name, restored_.insert(name), seen_.assign(ids->size(), 0);
   }
-  const auto& ifs = dm.interfaces();
-  ShellState::visit_interface_fields(s, [&](const char* name, auto& f) {
-    const auto& t = table(interface_table(name).c_str(), field_width(f));
-    for (std::size_t i = 0; i < ifs.size(); ++i) {
-      const double* r = t.row(ifs[i].gid);
-      SHELLFRAC_INPUT_REQUIRE(r, file << ": the checkpoint has no " << name << " for interface " << ifs[i].gid + 1);
-      read_row(f, LocalId(i), r);
+  // The row's local index: an owned element, or a local interface (both lists are sorted by global id).
+  const auto local = [&](GlobalId gid) -> LocalId {
+    const auto it = std::lower_bound(ids->begin(), ids->end(), gid);
+    return it != ids->end() && *it == gid ? LocalId(it - ids->begin()) : -1;
+  };
+  const auto fill = [&](int width, const auto& read) {
+    SHELLFRAC_INPUT_REQUIRE(rows.width == width, file_ << ": the checkpoint's table '" << name << "' has another width ("
+                                                       << rows.width << ", expected " << width
+                                                       << "; written by another version or for another model?)");
+    for (std::size_t k = 0; k < rows.ids.size(); ++k) {
+      const LocalId row = local(rows.ids[k]);
+      if (row < 0) continue;
+      seen_[std::size_t(row)] = 1;
+      read(row, rows.values.data() + k * std::size_t(width));
     }
+  };
+  ShellState::visit_element_fields(s_, [&](const char* field, auto& f) {
+    if (name == element_table(field))
+      fill(field_width(f), [&](LocalId le, const double* r) { read_row(f, le, r); });
   });
+  if (name == "plastic")
+    fill(nq * plastic_state_values, [&](LocalId le, const double* p) {
+      for (int q = 0; q < nq; ++q, p += plastic_state_values) unpack_plastic_state(p, s_.plastic[le * nq + q]);
+    });
+  ShellState::visit_interface_fields(s_, [&](const char* field, auto& f) {
+    if (name == interface_table(field))
+      fill(field_width(f), [&](LocalId i, const double* r) { read_row(f, i, r); });
+  });
+}
+
+void StateRestore::finish_table() {
+  if (current_.empty()) return;
+  const std::vector<GlobalId>& ids = *needed_(current_);
+  for (std::size_t k = 0; k < seen_.size(); ++k)
+    SHELLFRAC_INPUT_REQUIRE(seen_[k], file_ << ": the checkpoint's table '" << current_ << "' has no row for "
+                                            << (current_.rfind("interface ", 0) == 0 ? "interface " : "element ")
+                                            << ids[k] + 1 << " (written for another model?)");
+}
+
+void StateRestore::finish() {
+  finish_table();
+  current_.clear();
+  for (const auto& name : needed_.tables())
+    SHELLFRAC_INPUT_REQUIRE(restored_.count(name), file_ << ": the checkpoint's table '" << name
+                                                         << "' is missing (written by another version or for "
+                                                            "another model?)");
 }
 
 }  // namespace shellfrac::solver
