@@ -277,7 +277,7 @@ def plot_sizes(summary, path, steps):
     for c, ph in enumerate(PHASES):
         left.plot(elements, [e[ph] for e in summary], "s--", color="C%d" % c, mfc="none", label=ph.replace("_", " "))
     left.set_ylabel("µs per element-step (median)")
-    left.set_ylim(bottom=0)
+    left.set_ylim(0, 1.45 * max(e["us_per_element_step"] for e in summary))
     left.set_title("time, %d ranks" % summary[0]["ranks"] + (" (%d steps)" % steps if steps else ""))
     right.plot(elements, [e["peak_bytes_per_element"] / 1024 for e in summary], "o-", color="k",
                label="peak resident memory of all ranks")
@@ -290,7 +290,7 @@ def plot_sizes(summary, path, steps):
         ax.set_xscale("log")
         ax.set_xlabel("elements")
         ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=8, loc="lower left", ncol=2)
+        ax.legend(fontsize=8, loc="upper center" if ax is left else "lower left", ncol=3 if ax is left else 1)
     fig.tight_layout()
     tmp = path + ".part.png"
     fig.savefig(tmp, dpi=90)

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <functional>
-#include <utility>
 #include <memory>
+#include <sstream>
+#include <utility>
 
 #include "shellfrac/core/error.hpp"
+#include "shellfrac/core/parallel.hpp"
 #include "shellfrac/disc/dg_element.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 
@@ -160,22 +162,31 @@ void StateRestore::table(const std::string& name, const io::CheckpointTable& row
   });
 }
 
+// A missing row is remembered, not thrown, while the tables are read (the read is collective); finish() reports it.
 void StateRestore::finish_table() {
-  if (current_.empty()) return;
+  if (current_.empty() || !missing_.empty()) return;
   const std::vector<GlobalId>& ids = *needed_(current_);
-  for (std::size_t k = 0; k < seen_.size(); ++k)
-    SHELLFRAC_INPUT_REQUIRE(seen_[k], file_ << ": the checkpoint's table '" << current_ << "' has no row for "
-                                            << (current_.rfind("interface ", 0) == 0 ? "interface " : "element ")
-                                            << ids[k] + 1 << " (written for another model?)");
+  const auto k = std::find(seen_.begin(), seen_.end(), 0);
+  if (k == seen_.end()) return;
+  std::ostringstream os;
+  os << file_ << ": the checkpoint's table '" << current_ << "' has no row for "
+     << (current_.rfind("interface ", 0) == 0 ? "interface " : "element ") << ids[std::size_t(k - seen_.begin())] + 1
+     << " (written for another model?)";
+  missing_ = os.str();
 }
 
 void StateRestore::finish() {
   finish_table();
   current_.clear();
-  for (const auto& name : needed_.tables())
-    SHELLFRAC_INPUT_REQUIRE(restored_.count(name), file_ << ": the checkpoint's table '" << name
-                                                         << "' is missing (written by another version or for "
-                                                            "another model?)");
+  parallel::on_all_then_agree(
+      [&] {
+        SHELLFRAC_INPUT_REQUIRE(missing_.empty(), missing_);
+        for (const auto& name : needed_.tables())
+          SHELLFRAC_INPUT_REQUIRE(restored_.count(name), file_ << ": the checkpoint's table '" << name
+                                                               << "' is missing (written by another version or for "
+                                                                  "another model?)");
+      },
+      dm_.comm());
 }
 
 }  // namespace shellfrac::solver

@@ -48,7 +48,8 @@ class StateRestore {
   /// The time and the step; the element count checked against the mesh.
   void header(const io::CheckpointData& header);
   void table(const std::string& name, const io::CheckpointTable& rows);
-  /// Every table the state needs was given, with a row for every owned element or local interface.
+  /// Every table the state needs was given, with a row for every owned element or local interface (else
+  /// InputError on every rank). Collective.
   void finish();
   /// The rows to ask the checkpoint for.
   const CheckpointRows& rows() const { return needed_; }
@@ -62,6 +63,7 @@ class StateRestore {
   std::set<std::string> restored_;
   std::string current_;     ///< the table being restored
   std::vector<char> seen_;  ///< its rows restored so far
+  std::string missing_;     ///< the first missing row, reported by finish()
 };
 
 }  // namespace shellfrac::solver
