@@ -681,7 +681,7 @@ void read_checkpoint(const std::string& path, MPI_Comm comm, const WantedRows& w
     std::vector<GlobalId> block_ids;
     for (std::size_t first = 0; first < num_rows; first += rows_per_block) {
       const std::size_t n = std::min(rows_per_block, num_rows - first);
-      block.resize(n * width);
+      if (me == 0 || whole) block.resize(n * width);  // the other ranks get only their rows of a wanted table
       parallel::on_root_then_agree([&] { reader->read_rows(n, block.data()); }, 0, comm);
       rows.ids.clear(), rows.values.clear();
       if (whole) {  // every rank gets the block

@@ -123,6 +123,16 @@ void put_sets(int id, const FileLayout& l, const std::vector<std::int64_t>& file
   if (!names.empty()) SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_SIDE_SET, names), path);
 }
 
+/// The Nemesis global parameters of the node sets or of the side sets, put(ids, counts, factors): their ids, entry
+/// counts over the set and no distribution factors (put_sets writes none). Nothing without sets.
+template <class Put>
+void put_set_params_global(const std::vector<ResultsSet>& sets, std::vector<std::int64_t> counts, const Put& put) {
+  if (sets.empty()) return;
+  std::vector<std::int64_t> ids, factors(sets.size(), 0);
+  for (const auto& set : sets) ids.push_back(set.id);
+  put(ids.data(), counts.data(), factors.data());
+}
+
 /// The Nemesis I records of a per-rank file (docs/output.md "Nemesis records"): the set's global counts, block and
 /// set totals, and this rank's load-balance parameters and maps. A DG node belongs to one element, so every node
 /// and element of the file is internal: no border or external nodes, no border elements, no communication maps.
@@ -141,21 +151,12 @@ void put_nemesis(int id, NemesisGlobal n, const FileLayout& l, const std::string
                       path << ": Nemesis load-balance parameters");
   std::vector<std::int64_t> ids(l.block_ids.begin(), l.block_ids.end());
   SHELLFRAC_EXO_CHECK(ex_put_eb_info_global(id, ids.data(), n.block_elements.data()), path << ": Nemesis blocks");
-  // The sets are written without distribution factors (put_sets).
-  if (!l.node_sets.empty()) {
-    ids.clear();
-    for (const auto& set : l.node_sets) ids.push_back(set.id);
-    std::vector<std::int64_t> factors(ids.size(), 0);
-    SHELLFRAC_EXO_CHECK(ex_put_ns_param_global(id, ids.data(), n.node_set_entries.data(), factors.data()),
-                        path << ": Nemesis node sets");
-  }
-  if (!l.side_sets.empty()) {
-    ids.clear();
-    for (const auto& set : l.side_sets) ids.push_back(set.id);
-    std::vector<std::int64_t> factors(ids.size(), 0);
-    SHELLFRAC_EXO_CHECK(ex_put_ss_param_global(id, ids.data(), n.side_set_entries.data(), factors.data()),
-                        path << ": Nemesis side sets");
-  }
+  put_set_params_global(l.node_sets, n.node_set_entries, [&](auto* ids, auto* counts, auto* factors) {
+    SHELLFRAC_EXO_CHECK(ex_put_ns_param_global(id, ids, counts, factors), path << ": Nemesis node sets");
+  });
+  put_set_params_global(l.side_sets, n.side_set_entries, [&](auto* ids, auto* counts, auto* factors) {
+    SHELLFRAC_EXO_CHECK(ex_put_ss_param_global(id, ids, counts, factors), path << ": Nemesis side sets");
+  });
   std::vector<std::int64_t> node_map(static_cast<std::size_t>(num_nodes)), elem_map(l.element_gids.size());
   for (std::size_t k = 0; k < node_map.size(); ++k) node_map[k] = static_cast<std::int64_t>(k) + 1;
   for (std::size_t k = 0; k < elem_map.size(); ++k) elem_map[k] = static_cast<std::int64_t>(k) + 1;
