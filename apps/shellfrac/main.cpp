@@ -70,6 +70,13 @@ void print_summary(const shellfrac::solver::Simulation& sim, const std::string& 
               << ms.max_element + 1 << " (centroid " << ms.max_centroid[0] << ", " << ms.max_centroid[1] << ", "
               << ms.max_centroid[2] << ")\n";
   }
+  if (s.strengths.interfaces > 0) {
+    const auto& st = s.strengths;
+    std::cout << "  fracture: " << st.interfaces << " breakable interfaces, cohesive strength min " << st.min
+              << ", mean " << st.mean << ", max " << st.max;
+    if (st.scattered > 0) std::cout << " (" << st.scattered << " drawn with Fracture->Seed " << s.seed << ")";
+    std::cout << "\n";
+  }
   std::ostringstream setup;
   setup << std::fixed << std::setprecision(2) << "  set-up (slowest rank):";
   for (const auto& [phase, seconds] : sim.setup_seconds()) setup << " " << phase << " " << seconds << " s";

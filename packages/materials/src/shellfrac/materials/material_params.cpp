@@ -29,8 +29,60 @@ Teuchos::RCP<const Teuchos::ParameterList> MaterialParams::valid_parameters() {
   pl->set("Fracture Energy", 0.0, "Gamma: work of separation per unit crack area [force/length]; 0 = the "
                                   "strength drops to zero at once when an edge breaks (paper §6.3)",
           params::non_negative_double());
+  params::set_choice(*pl, "Strength Distribution", "Constant",
+                     "How the cohesive strength scatters from edge to edge (docs/theory.md §9.8): Constant (every edge "
+                     "has the Cohesive Strength), Uniform (mean Cohesive Strength, half-width Strength Spread x mean), "
+                     "Normal (mean Cohesive Strength, standard deviation Strength Spread x mean, truncated at 3 "
+                     "standard deviations) or Weibull (modulus Weibull Modulus; an edge of the Weibull Reference "
+                     "Length has the mean Cohesive Strength, a longer one is weaker as (L_ref/L)^(1/m)). Each edge's "
+                     "draw is a hash of Fracture->Seed and its id: the same on any number of ranks and threads",
+                     {"Constant", "Uniform", "Normal", "Weibull"});
+  pl->set("Strength Spread", 0.0,
+          "Uniform: half-width of the strengths as a fraction of the mean, in (0, 1); Normal: standard deviation as "
+          "a fraction of the mean, in (0, 1/3) so that the truncated law stays positive",
+          params::non_negative_double());
+  pl->set("Weibull Modulus", 0.0, "Weibull: the modulus m > 0 (metals' flaw populations: about 5 to 40; larger is "
+                                  "less scatter, the coefficient of variation is about 1.2/m)",
+          params::non_negative_double());
+  pl->set("Weibull Reference Length", 0.0,
+          "Weibull: the edge length L_ref [length] > 0 at which the mean edge strength is the Cohesive Strength",
+          params::non_negative_double());
   return pl;
 }
+
+namespace {
+
+// The strength distribution of a material with a Cohesive Strength, its own parameters only.
+StrengthScatter read_strength_scatter(const Teuchos::ParameterList& pl, double cohesive_strength,
+                                 const params::Context& ctx) {
+  StrengthScatter s;
+  s.type = distribution_of(pl.get<std::string>("Strength Distribution"));
+  s.spread = pl.get<double>("Strength Spread");
+  s.weibull_modulus = pl.get<double>("Weibull Modulus");
+  s.reference_length = pl.get<double>("Weibull Reference Length");
+  const std::string where = ctx.file + ": '" + ctx.path + "'";
+  const std::string type = distribution_name(s.type);
+  SHELLFRAC_INPUT_REQUIRE(!s.scattered() || cohesive_strength > 0,
+                          where << " has Strength Distribution = " << type << " but no 'Cohesive Strength'");
+  const bool uses_spread = s.type == StrengthDistribution::Uniform || s.type == StrengthDistribution::Normal;
+  const bool weibull = s.type == StrengthDistribution::Weibull;
+  SHELLFRAC_INPUT_REQUIRE(uses_spread || s.spread == 0,
+                          where << " gives a 'Strength Spread', which only the Uniform and Normal distributions use "
+                                << "(the Strength Distribution is " << type << ")");
+  SHELLFRAC_INPUT_REQUIRE(weibull || (s.weibull_modulus == 0 && s.reference_length == 0),
+                          where << " gives a 'Weibull Modulus' or 'Weibull Reference Length', which only the Weibull "
+                                << "distribution uses (the Strength Distribution is " << type << ")");
+  const double max_spread = s.type == StrengthDistribution::Normal ? 1 / normal_truncation : 1.0;
+  SHELLFRAC_INPUT_REQUIRE(!uses_spread || (s.spread > 0 && s.spread < max_spread),
+                          where << "->Strength Spread' = " << s.spread << " must be in (0, " << max_spread << ") for "
+                                << "the " << type << " distribution (its strengths must stay positive)");
+  SHELLFRAC_INPUT_REQUIRE(!weibull || (s.weibull_modulus > 0 && s.reference_length > 0),
+                          where << " has Strength Distribution = Weibull but no positive 'Weibull Modulus' and "
+                                << "'Weibull Reference Length'");
+  return s;
+}
+
+}  // namespace
 
 MaterialParams MaterialParams::from_parameters(const std::string& name, Teuchos::ParameterList& pl,
                                                const params::Context& ctx) {
@@ -47,6 +99,7 @@ MaterialParams MaterialParams::from_parameters(const std::string& name, Teuchos:
   m.shear_in_yield = pl.get<bool>("Shear Yield");
   m.cohesive_strength = pl.get<double>("Cohesive Strength");
   m.fracture_energy = pl.get<double>("Fracture Energy");
+  m.strength_scatter = read_strength_scatter(pl, m.cohesive_strength, ctx);
   SHELLFRAC_INPUT_REQUIRE(m.cohesive_strength > 0 || m.fracture_energy == 0,
                           ctx.file << ": '" << ctx.path << "' gives a 'Fracture Energy' but no 'Cohesive Strength'");
   if (m.plastic()) {

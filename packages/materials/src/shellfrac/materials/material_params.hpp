@@ -6,6 +6,7 @@
 #include <string>
 
 #include "shellfrac/core/parameters.hpp"
+#include "shellfrac/materials/cohesive_strength.hpp"
 
 namespace shellfrac::materials {
 
@@ -27,6 +28,7 @@ struct MaterialParams {
   bool shear_in_yield = false;   ///< transverse shear in the yield function (`Shear Yield`, theory.md §4.1)
   double cohesive_strength = 0;  ///< sigma_c [force / length^2]; 0 = edges of this material never break
   double fracture_energy = 0;    ///< Gamma [force / length] (work of separation per unit area), >= 0
+  StrengthScatter strength_scatter;  ///< how the edges' strengths scatter about cohesive_strength (theory.md §9.8)
   bool plastic() const { return model == "Resultant Plasticity"; }
 
   /// Valid parameters of one entry of the "Materials" sublist.

@@ -202,7 +202,7 @@ Teuchos::RCP<const Teuchos::ParameterList> OutputParams::valid_parameters() {
   pl->set("Fields", Teuchos::Array<std::string>(),
           "Exodus fields to write, e.g. {displ, damage, fragment_id}; empty = all: the nodal vectors displ, velocity, "
           "director and the element fields block, rank, eq_plastic_strain, membrane_force, bending_moment, "
-          "shear_force, damage, fragment_id (docs/output.md). The history columns are always written as global "
+          "shear_force, damage, fragment_id, edge_strength (docs/output.md). The history columns are always written as global "
           "variables");
   pl->set("Probes", Teuchos::Array<std::string>(), "Node sets whose mean displacement and velocity (over all DG "
                                                      "copies of their nodes) are history columns <set>_displ_x ... "

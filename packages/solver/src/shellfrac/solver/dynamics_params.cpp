@@ -4,6 +4,7 @@
 #include <Teuchos_Tuple.hpp>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "shellfrac/core/error.hpp"
 
@@ -119,6 +120,11 @@ Teuchos::RCP<const Teuchos::ParameterList> FractureParams::valid_parameters() {
           "time), so its initial secant S0/delta0 is resolved by the time step (theory.md §9.6). 0 = the rigid law "
           "of the paper, whose balance error grows with the opening rate",
           params::double_range(0.0, 1.0));
+  pl->set("Seed", 0, "Key of the per-edge strength draws of materials with a Strength Distribution other than "
+                     "Constant (docs/theory.md §9.8): each edge's strength is a hash of the seed and the edge's id, the "
+                     "same on any rank or thread count and after a restart; another seed gives another, equally "
+                     "likely pattern of flaws",
+          params::int_range(0, std::numeric_limits<int>::max()));
   return pl;
 }
 
@@ -130,6 +136,7 @@ FractureParams FractureParams::from_parameters(Teuchos::ParameterList& pl, const
   f.alpha2 = pl.get<double>("Alpha 2");
   f.alpha3 = pl.get<double>("Alpha 3");
   f.activation_opening = pl.get<double>("Activation Opening");
+  f.seed = pl.get<int>("Seed");
   return f;
 }
 

@@ -9,6 +9,7 @@
 #include "shellfrac/core/exact_sum.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
+#include "shellfrac/materials/cohesive_strength.hpp"
 #include "shellfrac/materials/elastic_resultant.hpp"
 #include "shellfrac/solver/cohesive_interface.hpp"
 #include "shellfrac/solver/force_assembly.hpp"
@@ -32,6 +33,7 @@ Fracture::Fracture(const FractureParams& fr, const MeshSets& sets, const ShellMo
   std::set<std::pair<GlobalId, int>> allowed;
   if (fr.edges != "all") allowed = sets.side_set("'Fracture->Edges'", fr.edges);
   breakable_.assign(ifs.size(), 0), cohesive_.resize(ifs.size());
+  std::vector<char> scattered(ifs.size(), 0);
   bool any = false;
   for (std::size_t i = 0; i < ifs.size(); ++i) {
     const auto& fc = ifs[i];
@@ -42,21 +44,54 @@ Fracture::Fracture(const FractureParams& fr, const MeshSets& sets, const ShellMo
     if (fr.edges != "all" && !allowed.count({dm_.element_gid(fc.minus), fc.minus_edge}) &&
         !allowed.count({dm_.element_gid(fc.plus), fc.plus_edge}))
       continue;
-    // Sides of different sections use the mean thickness, strength and work of separation (a choice the paper
-    // leaves open; docs/theory.md §9.2).
+    // Each side's material turns the interface's one draw into its strength (theory.md §9.8); sides of different
+    // sections use the mean thickness, strength and work of separation (a choice the paper leaves open, §9.2).
     breakable_[i] = 1, any = true;
-    cohesive_[i] = materials::make_cohesive_params(
-        0.5 * (a.thickness + b.thickness), 0.5 * (ma.cohesive_strength + mb.cohesive_strength),
-        0.5 * (ma.fracture_energy + mb.fracture_energy), fr.alpha1, fr.alpha2, fr.alpha3,
-        fr.activation_opening);
+    const double u = materials::unit_draw(std::uint64_t(fr.seed), std::uint64_t(fc.gid));
+    const double length = 1 / interface_refs_[i].inv_he;
+    const double sigma_c = 0.5 * (materials::edge_strength(ma.strength_scatter, ma.cohesive_strength, u, length) +
+                                  materials::edge_strength(mb.strength_scatter, mb.cohesive_strength, u, length));
+    cohesive_[i] = materials::make_cohesive_params(0.5 * (a.thickness + b.thickness), sigma_c,
+                                                   0.5 * (ma.fracture_energy + mb.fracture_energy), fr.alpha1,
+                                                   fr.alpha2, fr.alpha3, fr.activation_opening);
+    if (ma.strength_scatter.scattered() || mb.strength_scatter.scattered()) scattered[i] = 1;
   }
   enabled_ = parallel::any(any, dm_.comm());
+  summarize_strengths(scattered);
   label_.resize(dm_.num_overlap());
   for (LocalId le = 0; le < dm_.num_overlap(); ++le) label_[le] = dm_.element_gid(le);
   if (enabled_) label_exchange_ = std::make_unique<GhostExchange>(dm_, std::initializer_list<int>{1});
 }
 
 Fracture::~Fracture() = default;
+
+// Min, max and the exact mean of the breakable interfaces' strengths, each interface counted by its owner.
+void Fracture::summarize_strengths(const std::vector<char>& scattered_here) {
+  const auto& ifs = dm_.interfaces();
+  std::int64_t count = 0, scattered = 0;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  std::vector<ExactSum> total(1);
+  for (std::size_t i = 0; i < ifs.size(); ++i) {
+    if (!breakable_[i] || !ifs[i].owned) continue;
+    const double sigma_c = cohesive_[i].sigma_c;
+    ++count, scattered += scattered_here[i], total[0].add(sigma_c);
+    lo = std::min(lo, sigma_c), hi = std::max(hi, sigma_c);
+  }
+  ExactSum::allreduce(total, dm_.comm());
+  strengths_.interfaces = parallel::sum(count, dm_.comm());
+  strengths_.scattered = parallel::sum(scattered, dm_.comm());
+  if (strengths_.interfaces == 0) return;
+  strengths_.min = -parallel::max(-lo, dm_.comm());
+  strengths_.max = parallel::max(hi, dm_.comm());
+  strengths_.mean = total[0].value() / double(strengths_.interfaces);
+}
+
+double Fracture::weakest_edge_strength(const ShellModel& model, LocalId le) const {
+  double weakest = 0;
+  for (const auto& [i, side] : model.incident.of(le))
+    if (breakable_[i]) weakest = weakest > 0 ? std::min(weakest, cohesive_[i].sigma_c) : cohesive_[i].sigma_c;
+  return weakest;
+}
 
 void Fracture::nucleate(long step, double t1, ShellState& s, ShellModel& model, const ForceAssembly& assembly) {
   const auto& ifs = dm_.interfaces();
@@ -147,12 +182,14 @@ void Fracture::log_activation(std::size_t i, long step, double t1, double fbar, 
   crack_log_.insert(crack_log_.end(), {double(step + 1), t1, double(fc.gid + 1), double(dm_.element_gid(fc.minus) + 1),
                                        double(dm_.element_gid(fc.plus) + 1), xm[2][0], xm[2][1], xm[2][2], fbar});
   for (double p : parts) crack_log_.push_back(total > 0 ? p / total : 0.0);
+  crack_log_.push_back(cohesive_[i].sigma_c);
 }
 
 std::vector<std::string> Fracture::crack_event_columns() {
   return {"step",        "time",          "interface",         "element_minus",         "element_plus",
           "x",           "y",             "z",                 "fbar",                  "share_normal",
-          "share_inplane_shear", "share_transverse_shear", "share_couple_normal", "share_couple_shear"};
+          "share_inplane_shear", "share_transverse_shear", "share_couple_normal", "share_couple_shear",
+          "cohesive_strength"};
 }
 
 std::vector<std::vector<double>> Fracture::crack_events() {
@@ -256,7 +293,8 @@ double Fracture::damage(const ShellState& s, const ShellModel& model, LocalId le
   for (const auto& [i, side] : model.incident.of(le)) {
     double d = s.mode[i] == separated ? 1.0 : 0.0;
     if (s.mode[i] == cohesive)
-      for (int g = 0; g < 3; ++g) d = std::max(d, std::min(1.0, s.delta_max.at(i)[g] / cohesive_[i].delta_f));
+      for (int g = 0; g < 3; ++g)  // the strength lost, 1 - S(delta_max)/S0 (theory.md §9.2)
+        d = std::max(d, std::clamp((s.delta_max.at(i)[g] - cohesive_[i].delta0) / cohesive_[i].delta_f, 0.0, 1.0));
     damage = std::max(damage, d);
   }
   return damage;

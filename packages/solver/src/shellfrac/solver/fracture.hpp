@@ -11,6 +11,7 @@
 
 #include "shellfrac/disc/dg_element.hpp"
 #include "shellfrac/materials/cohesive_law.hpp"
+#include "shellfrac/materials/cohesive_strength.hpp"
 #include "shellfrac/solver/dynamics_params.hpp"
 #include "shellfrac/solver/shell_state.hpp"
 
@@ -39,6 +40,10 @@ class Fracture {
   bool enabled() const { return enabled_; }
   /// The cohesive law of each local interface (meaningful where breakable).
   const std::vector<materials::CohesiveParams>& cohesive_params() const { return cohesive_; }
+  /// The breakable interfaces' strengths, the same on every rank.
+  const materials::StrengthSummary& strengths() const { return strengths_; }
+  /// The strength of the weakest breakable edge of owned element le (0 if none may break).
+  double weakest_edge_strength(const ShellModel& model, LocalId le) const;
 
   /// Nucleation and activation after the forces at t1 of step `step` (docs/theory.md §9.5-9.6). Both ranks that
   /// hold an interface decide from the same numbers (the ghosts' edge tractions come with the flux exchange),
@@ -64,12 +69,13 @@ class Fracture {
   /// centre of mass x/y/z, momentum x/y/z}, as exact sums (rank-count independent). Each rank sends only its
   /// pieces of fragments. Collective; the rows are the same on every rank.
   std::vector<std::vector<double>> fragment_table(const ShellState& s, const ShellModel& model) const;
-  /// Damage of owned element le: the largest delta_max / delta_f over its edges' points, 1 if separated.
+  /// Damage of owned element le: the largest (delta_max - delta0) / delta_f over its edges' points, 1 if separated.
   double damage(const ShellState& s, const ShellModel& model, LocalId le) const;
 
  private:
   void log_activation(std::size_t i, long step, double t1, double fbar, const double xm[3][3], const double n[3][3],
                       const double m[3][3], const double nu[3][3]);
+  void summarize_strengths(const std::vector<char>& scattered);
   double element_energy(const ShellState& s, const ShellModel& model, const ForceAssembly& assembly,
                         LocalId le) const;
 
@@ -78,6 +84,7 @@ class Fracture {
   bool enabled_ = false;
   std::vector<char> breakable_;  // per local interface
   std::vector<materials::CohesiveParams> cohesive_;
+  materials::StrengthSummary strengths_;
   std::vector<double> crack_log_;  // activations of owned interfaces not yet reported, one row each
   std::unique_ptr<GhostExchange> label_exchange_;  // the fragment labels of the ghosts (fracture runs)
   mutable GlobalId fragments_at_ = -1;  // the number of separated interfaces the cache belongs to

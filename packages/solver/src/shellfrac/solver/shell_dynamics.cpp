@@ -107,6 +107,7 @@ void ShellDynamics::step_to(double t1) {
 }
 const PhaseTimes& ShellDynamics::phase_times() const { return impl_->times; }
 bool ShellDynamics::fracture() const { return impl_->fracture.enabled(); }
+const materials::StrengthSummary& ShellDynamics::strengths() const { return impl_->fracture.strengths(); }
 bool ShellDynamics::relaxed() const { return impl_->integrator.relaxed(); }
 double ShellDynamics::relaxation_residual() const { return impl_->integrator.relaxation_residual(); }
 const ShellState& ShellDynamics::state() const { return impl_->state; }
@@ -159,7 +160,8 @@ std::vector<std::vector<double>> ShellDynamics::crack_events() { return impl_->f
 std::vector<std::string> ShellDynamics::crack_event_columns() { return Fracture::crack_event_columns(); }
 
 std::vector<std::string> ShellDynamics::element_field_names() {
-  return {"eq_plastic_strain", "membrane_force", "bending_moment", "shear_force", "damage", "fragment_id"};
+  return {"eq_plastic_strain", "membrane_force", "bending_moment", "shear_force", "damage", "fragment_id",
+          "edge_strength"};
 }
 
 // Element fields from the current state: the kinematics of the element kernel with the current lifted edges
@@ -168,7 +170,7 @@ void ShellDynamics::element_fields(std::vector<std::vector<double>>& fields) con
   const Impl& s = *impl_;
   const ShellModel& model = s.model;
   constexpr int nq = disc::num_area_points;
-  fields.assign(6, std::vector<double>(model.owned, 0.0));
+  fields.assign(element_field_names().size(), std::vector<double>(model.owned, 0.0));
   const double zero[3] = {0, 0, 0};
   for (LocalId le = 0; le < model.owned; ++le) {
     const double area = model.element_refs[le].area;
@@ -186,6 +188,7 @@ void ShellDynamics::element_fields(std::vector<std::vector<double>>& fields) con
       fields[3][le] += w * std::sqrt(Q[0] * Q[0] + Q[1] * Q[1]);
     }
     fields[4][le] = s.fracture.damage(s.state, model, le);
+    fields[6][le] = s.fracture.weakest_edge_strength(model, le);
   }
   if (s.fracture.enabled()) s.fracture.fragments(s.state);
   for (LocalId le = 0; le < model.owned; ++le)

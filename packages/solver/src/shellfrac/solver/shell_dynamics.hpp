@@ -16,6 +16,7 @@
 
 #include "shellfrac/core/types.hpp"
 #include "shellfrac/io/checkpoint.hpp"
+#include "shellfrac/materials/cohesive_strength.hpp"
 #include "shellfrac/solver/energy_accounts.hpp"
 #include "shellfrac/solver/phase_times.hpp"
 
@@ -84,6 +85,8 @@ class ShellDynamics {
   void restore(const std::string& file, const std::function<void(const io::CheckpointData& header)>& check);
   /// Whether any edge of the mesh may break (Fracture; the same on every rank).
   bool fracture() const;
+  /// The breakable interfaces' drawn strengths (Fracture::strengths; the same on every rank).
+  const materials::StrengthSummary& strengths() const;
   /// Static Relaxation: whether the static equilibrium has been reached, and the last relative residual (NaN
   /// before the loads and prescribed motions reached their final values).
   bool relaxed() const;

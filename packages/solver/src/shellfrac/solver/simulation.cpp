@@ -221,6 +221,8 @@ void Simulation::summarize() {
   const auto& dm = *model_.distributed;
   summary_.stable_dt = model_.dynamics->stable_time_step();
   summary_.mass_scaling = model_.dynamics->model().mass_scaling;
+  summary_.strengths = model_.dynamics->strengths();
+  summary_.seed = deck_.fracture.seed;
   summary_.dt = model_.dynamics->time_step();
   const MeshCounts& c = model_.counts;
   summary_.elements = c.elements, summary_.nodes = c.nodes, summary_.edges = c.edges;

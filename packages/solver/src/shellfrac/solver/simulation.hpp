@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "shellfrac/core/types.hpp"
+#include "shellfrac/materials/cohesive_strength.hpp"
 #include "shellfrac/solver/deck.hpp"
 #include "shellfrac/solver/mass_scaling.hpp"
 #include "shellfrac/solver/mesh_sets.hpp"
@@ -32,6 +33,8 @@ struct RunSummary {
   std::string checkpoint;          ///< the last checkpoint the run wrote ("" if none)
   std::vector<MeshSets::RegionSize> regions;  ///< the deck's regions and their sizes
   MassScaling mass_scaling;                   ///< what Target Time Step added (no elements: none)
+  materials::StrengthSummary strengths;       ///< the breakable edges' strengths (no interfaces: no fracture)
+  long seed = 0;                              ///< Fracture->Seed, the key of their draws
   bool static_relaxation = false;  ///< the deck asked for the static state (Static Relaxation)
   bool relaxed = false;            ///< ... and the run reached it before End Time
   double residual = 0;             ///< the last relative residual of the static relaxation
