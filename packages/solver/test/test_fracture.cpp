@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <tuple>
 
 #include "deck_test_util.hpp"
 #include "cracked_strip.hpp"
@@ -248,4 +249,78 @@ TEST(Fracture, FixtureBorderEdgesBreak) {
     }
   }
   MPI_Barrier(MPI_COMM_WORLD);
+}
+
+// Crack-face contact (Fracture->Crack Face Contact, docs/theory.md §9.9). The strip of StripWithOneCohesiveEdge, free at both ends, its halves
+// launched apart at V = 1 m/s and pulled back by opposite body accelerations g = 2.5e4 m/s^2 (Gravity on each
+// half); the crack edge (Gamma = 0, sigma_c = 5 MPa < Z V = 13.6 MPa) separates at once, the halves stop after
+// V/g = 40 us and meet again at about 2 V/g = 80 us at V. References:
+//  * the contact of two elastic bars meeting at V each carries the stress Z V (Z = rho c), so the penalty
+//    k_c = beta_x/h_e = c_x E h/b closes the faces by delta = Z V h b/(k_c b) = V b/(c_x c) = 6.6e-8 m
+//    (c_x = 3, c = 5058 m/s); measured from the contact energy, the only energy of a separated edge:
+//    U_c = 1/2 k_c b delta^2 over the edge's width b, delta = sqrt(2 U_c/(k_c b)). Asserted: the largest
+//    penetration below 2 V b/(c_x c) (dynamic overshoot allowed); without contact the halves would pass through
+//    each other by about V times the remaining time (0.03 mm);
+//  * 1-D elastic impact of identical bars: they exchange velocities, so the halves bounce back after the contact
+//    wave's round trip 2 L/c = 20 us; the left half's momentum goes from about +m V before the impact to about
+//    -m V after it (the body force changes it by m g 2L/c = 0.5 m V meanwhile). Asserted: above +0.5 m V at one
+//    frame and below -0.25 m V at a later one; without contact it would only grow;
+//  * the energy balance closes to 1e-3 of the input (initial kinetic energy plus the body forces' work) at every
+//    step: the contact is elastic and stores its energy in cohesive_energy.
+TEST(Fracture, CrackFacesStopAtContact) {
+  constexpr double Vc = 1.0, g = 2.5e4, sc = 5e6, cx = 3.0;
+  const auto dir = work_dir("fracture_contact");
+  write_strip(dir + "/strip_mesh.exo");
+  auto deck = base_deck({h, rho, E, 0.0}, dir);
+  set_mesh_file(*deck, "strip_mesh.exo");
+  deck->sublist("Fracture").set("Edges", std::string("crack"));
+  deck->sublist("Fracture").set("Crack Face Contact", true);
+  auto& material = shell_material(*deck);
+  material.set("Cohesive Strength", sc), material.set("Fracture Energy", 0.0);
+  for (const auto& [name, lo, hi] : {std::tuple{"left", -1.0, L}, std::tuple{"right", L, 3 * L}}) {
+    auto& r = deck->sublist("Regions").sublist(name);
+    r.set("Shape", std::string("Box")), r.set("Min", vec3(lo, -1, -1)), r.set("Max", vec3(hi, 1, 1));
+  }
+  initial_velocity(*deck, "left", "left", vec3(-Vc, 0, 0));
+  initial_velocity(*deck, "right", "right", vec3(Vc, 0, 0));
+  for (const auto& [name, sign] : {std::pair{"left", 1.0}, std::pair{"right", -1.0}}) {
+    auto& load = deck->sublist("Loads").sublist(std::string("pull ") + name);
+    load.set("Type", std::string("Gravity")), load.set("Elements", std::string(name));
+    load.set("Acceleration", vec3(sign * g, 0, 0));
+  }
+  deck->sublist("Time Integration").set("End Time", 1.1e-4);
+  deck->sublist("Time Integration").set("Output Interval", 2e-6);
+  set_probes(*deck, {});
+  write_deck(dir + "/contact.xml", *deck);
+  solver::Simulation sim(dir + "/contact.xml");
+  sim.run();
+  std::vector<std::string> hd;
+  const auto rows = read_history(sim.history_path(), hd);
+  const double c = std::sqrt(E / rho), kc = cx * E * h / b;
+  double worst_penetration = 0, input = 0, worst_error = 0;
+  for (const auto& r : rows) {
+    worst_penetration = std::max(worst_penetration, std::sqrt(2 * r[column(hd, "cohesive_energy")] / (kc * b)));
+    input = std::max(input, rows[0][column(hd, "kinetic_energy")] + r[column(hd, "external_work")]);
+    worst_error = std::max(worst_error, std::abs(r[column(hd, "energy_balance_error")]));
+  }
+  std::printf("largest penetration %.3g m (bound %.3g m), worst balance error %.3g of the input %.3g J\n",
+              worst_penetration, 2 * Vc * b / (cx * c), worst_error / input, input);
+  EXPECT_EQ(rows.back()[column(hd, "num_separated_edges")], 1.0);
+  EXPECT_GT(worst_penetration, 0.1 * Vc * b / (cx * c)) << "the faces must have met";
+  EXPECT_LT(worst_penetration, 2 * Vc * b / (cx * c));
+  EXPECT_LT(worst_error, 1e-3 * input);
+  // The left half bounced: its momentum went from towards the right half to away from it.
+  std::vector<std::string> hf;
+  const auto frags = read_history(sim.fragments_path(), hf);
+  const double mV = rho * h * L * b * Vc;
+  double approach = -1, bounced = -1;  // the times of the first frame above +0.5 m V, and a later one below -0.25 m V
+  for (const auto& f : frags) {
+    if (f[column(hf, "com_x")] > L) continue;  // the right half
+    const double p = f[column(hf, "momentum_x")], t = f[0];
+    if (approach < 0 && p > 0.5 * mV) approach = t;
+    if (approach > 0 && bounced < 0 && p < -0.25 * mV) bounced = t;
+  }
+  std::printf("left half: approaching at %g s, bounced back by %g s\n", approach, bounced);
+  EXPECT_GT(approach, 0.0);
+  EXPECT_GT(bounced, approach);
 }

@@ -28,10 +28,14 @@
 /// Bounds: n = s delta <= S(delta_max) <= S0, hence |n_c| <= max(1, alpha1) S0 and |m_c| <= max(alpha2, alpha3) h S0
 /// (so |n_c| <= S0 holds for alpha1 <= 1 only; theory.md §9.3).
 ///
-/// Compression/contact is not treated (paper §5, theory.md §9.3): delta_N < 0 enters delta through delta_N^2.
+/// With crack-face contact (p.contact, theory.md §9.9) closing is not opening: delta_N enters delta as
+/// <delta_N> = max(delta_N, 0), the normal force of the nucleation criterion as <n.nu>, and
+/// crack_face_contact_energy resists the faces' interpenetration; without it delta_N enters as delta_N^2 (paper).
 #include <Kokkos_Macros.hpp>
 #include <cmath>
 #include <limits>
+
+#include "shellfrac/core/dual_number.hpp"
 
 namespace shellfrac::materials {
 
@@ -53,6 +57,9 @@ struct CohesiveParams {
   double k;        ///< softening rate h sigma_c^2 / (2 Gamma); +infinity if Gamma = 0
   double delta_f;  ///< softening length 2 Gamma / sigma_c; 0 if Gamma = 0
   double delta0;   ///< opening at which softening starts (theory.md §9.6: the activation opening); 0 = rigid law
+  double contact_stiffness = 0;  ///< k_c of the crack-face contact (theory.md §9.9) [force / length^2]
+  bool contact = false;  ///< crack-face contact (Fracture->Crack Face Contact): a closing normal jump is no opening,
+                         ///< a compressive normal force does not nucleate, the faces resist interpenetration
 };
 
 /// Host helper: cohesive parameters from the thickness h, the strength sigma_c, the work of separation Gamma,
@@ -96,13 +103,16 @@ KOKKOS_INLINE_FUNCTION double split_jump(const double a[3], const double nu[3], 
 }
 
 /// Components of the jumps (paper eq. 19) and the squared effective opening delta^2 of eq. 20,
-///   delta^2 = delta_N^2 + alpha1^2 |delta_S|^2 + h^2 (alpha2^2 theta_N^2 + alpha3^2 |theta_S|^2).
+///   delta^2 = <delta_N>^2 + alpha1^2 |delta_S|^2 + h^2 (alpha2^2 theta_N^2 + alpha3^2 |theta_S|^2),
+/// <x> = max(x, 0) with crack-face contact (p.contact): a closing normal jump is then no opening (dN is returned
+/// as <delta_N>); without it, delta_N^2 (the paper's eq. 20).
 /// Shared by effective_opening and cohesive_tractions, so that both give bitwise the same delta.
 KOKKOS_INLINE_FUNCTION double opening_squared(const CohesiveParams& p, const double jphi[3], const double jt[3],
                                               const double nu[3], double& dN, double dS[3], double& tN,
                                               double tS[3]) {
   const double dS2 = split_jump(jphi, nu, dN, dS);
   const double tS2 = split_jump(jt, nu, tN, tS);
+  if (p.contact && dN < 0.0) dN = 0.0;  // with crack-face contact, closing is no opening (theory.md §9.9)
   const double a1s = p.alpha1 * p.alpha1, a2s = p.alpha2 * p.alpha2, a3s = p.alpha3 * p.alpha3;
   return dN * dN + a1s * dS2 + p.h * p.h * (a2s * tN * tN + a3s * tS2);
 }
@@ -194,9 +204,48 @@ KOKKOS_INLINE_FUNCTION double starting_energy_released(const CohesiveParams& p, 
   return 0.5 * p.k * p.delta0 * ((delta_max < end ? delta_max : end) - p.delta0);
 }
 
+/// Crack-face contact at an edge point (theory.md §9.9): the faces of an activated edge are the through-thickness
+/// lines z in [-h/2, h/2] of its two sides, and fibre z of the minus side is ahead of the plus side's by the
+/// normal gap g(z) = d_N + z t_N (d_N = [[phi]].nu, t_N = [[t]].nu, the raw DG jumps). Where g < 0 a penalty of
+/// k_c / h per unit thickness pushes the faces apart, with the energy per unit reference length
+///   U = k_c/(2h) int_{g<0} g^2 dz
+/// (the exact integral over the part of the thickness in contact; U is C1 in d_N and t_N). Closed over the whole
+/// thickness: U = 1/2 k_c (d_N^2 + h^2/12 t_N^2). T is double or a dual number (disc/dual_number.hpp): its
+/// derivatives are then the contact force f_N = dU/d d_N and couple m_N = dU/d t_N along nu.
+template <class T>
+KOKKOS_INLINE_FUNCTION T crack_face_contact_energy(double k_c, double h, const T& d_N, const T& t_N) {
+  const double dv = value_of(d_N), tv = value_of(t_N);
+  if (!(k_c > 0.0)) return T(0.0);
+  // The part [z1, z2] of the thickness where g(z) = d_N + z t_N < 0.
+  T z1(-0.5 * h), z2(0.5 * h);
+  if (tv > 0.0) {
+    const T z0 = -d_N / t_N;
+    if (value_of(z0) < 0.5 * h) z2 = z0;
+  } else if (tv < 0.0) {
+    const T z0 = -d_N / t_N;
+    if (value_of(z0) > -0.5 * h) z1 = z0;
+  } else if (!(dv < 0.0)) {
+    return T(0.0);
+  }
+  if (!(value_of(z2) > value_of(z1))) return T(0.0);
+  const T i0 = z2 - z1, i1 = T(0.5) * (z2 * z2 - z1 * z1), i2 = (z2 * z2 * z2 - z1 * z1 * z1) / T(3.0);
+  return T(0.5 * k_c / h) * (d_N * d_N * i0 + T(2.0) * d_N * t_N * i1 + t_N * t_N * i2);
+}
+
+/// crack_face_contact_energy with its force f_N = dU/d d_N and couple m_N = dU/d t_N (0 when apart).
+KOKKOS_INLINE_FUNCTION double crack_face_contact(double k_c, double h, double d_N, double t_N, double& f_N,
+                                                 double& m_N) {
+  using D = Dual<2>;
+  const D U = crack_face_contact_energy(k_c, h, D::variable(d_N, 0), D::variable(t_N, 1));
+  f_N = U.d[0], m_N = U.d[1];
+  return U.v;
+}
+
 /// Equivalent traction of the nucleation criterion (paper eqs. 29-31, theory.md §9.5 step 2) from the average
 /// edge force n and couple m (per unit reference length) and the unit co-normal nu:
-///   n_eq = sqrt( (n.nu)^2 + (|(1-nu(x)nu) n|/alpha1)^2 + ((m.nu)/(alpha2 h))^2 + (|(1-nu(x)nu) m|/(alpha3 h))^2 ).
+///   n_eq = sqrt( <n.nu>^2 + (|(1-nu(x)nu) n|/alpha1)^2 + ((m.nu)/(alpha2 h))^2 + (|(1-nu(x)nu) m|/(alpha3 h))^2 ),
+/// <x> = max(x, 0) with crack-face contact (p.contact: the faces are pressed together, not pulled apart);
+/// (n.nu)^2 without it (the paper's eq. 31).
 /// Nucleation when n_eq >= S0 (eq. 30: f = n_eq/S0 - 1 >= 0; theory.md §9.5 averages f over the edge, eq. 51).
 /// Applied to the tractions of cohesive_tractions it returns the effective traction n = S(delta_max)
 /// delta/delta_max (eq. 29), i.e. S(delta_max) on a loading state. Pure membrane tension n = sigma h nu gives
@@ -206,12 +255,13 @@ KOKKOS_INLINE_FUNCTION double equivalent_traction(const CohesiveParams& p, const
   double nN, nS[3], mN, mS[3];
   const double nS2 = detail::split_jump(n, nu, nN, nS);
   const double mS2 = detail::split_jump(m, nu, mN, mS);
+  if (p.contact && nN < 0.0) nN = 0.0;  // with crack-face contact compression does not drive an edge open (§9.9)
   const double a2h = p.alpha2 * p.h, a3h = p.alpha3 * p.h;
   return std::sqrt(nN * nN + nS2 / (p.alpha1 * p.alpha1) + (mN * mN) / (a2h * a2h) + mS2 / (a3h * a3h));
 }
 
 /// The five squared terms of n_eq^2 (equivalent_traction) for the crack log: [0] (n.nu)^2 (normal opening),
-/// [1] (n.tau)^2/alpha1^2 (in-plane sliding along the edge), [2] (|n_S|^2 - (n.tau)^2)/alpha1^2 (transverse,
+/// <n.nu>^2 = 0 under compression, [1] (n.tau)^2/alpha1^2 (in-plane sliding along the edge), [2] (|n_S|^2 - (n.tau)^2)/alpha1^2 (transverse,
 /// out-of-plane sliding: shear-off), [3] (m.nu)^2/(alpha2 h)^2, [4] |m_S|^2/(alpha3 h)^2 (director couples).
 /// tau: a unit tangent of the edge orthogonal to nu. Their sum is n_eq^2.
 KOKKOS_INLINE_FUNCTION void equivalent_traction_parts(const CohesiveParams& p, const double n[3], const double m[3],
@@ -221,7 +271,7 @@ KOKKOS_INLINE_FUNCTION void equivalent_traction_parts(const CohesiveParams& p, c
   const double mS2 = detail::split_jump(m, nu, mN, mS);
   const double nT = nS[0] * tau[0] + nS[1] * tau[1] + nS[2] * tau[2];
   const double a1 = p.alpha1 * p.alpha1, a2h = p.alpha2 * p.h, a3h = p.alpha3 * p.h;
-  parts[0] = nN * nN;
+  parts[0] = p.contact && nN < 0.0 ? 0.0 : nN * nN;
   parts[1] = nT * nT / a1;
   parts[2] = (nS2 - nT * nT) / a1;
   parts[3] = mN * mN / (a2h * a2h);

@@ -76,7 +76,7 @@ KOKKOS_INLINE_FUNCTION void interface_frame(const double nu[3], const double dba
 /// and couple n, m of the nucleation check and its co-normals nu. At each edge point the law starts from the
 /// opening Q0 whose tractions are (n, m) scaled to the strength S0 (time-continuous activation): with the
 /// initial secant s0 = S0/delta0,
-///   [[phi]]0 = ((n.nu) nu + n_S/alpha1^2)/s0 ,   [[t]]0 = ((m.nu) nu/alpha2^2 + m_S/alpha3^2)/(h^2 s0) ,
+///   [[phi]]0 = (<n.nu> nu + n_S/alpha1^2)/s0 ,   [[t]]0 = ((m.nu) nu/alpha2^2 + m_S/alpha3^2)/(h^2 s0) ,
 /// whose effective opening is delta(Q0) = n_eq delta0/S0. The opening of the law is measured from the jumps
 /// now (the DG jumps that the penalty and the lifting held) plus Q0: offset[g] = components in the interface
 /// frame of (current jumps - Q0); delta_max[g] = max(delta0, delta(Q0)). With delta0 = 0 (Gamma = 0, or the
@@ -97,10 +97,12 @@ KOKKOS_INLINE_FUNCTION void activation_state(const disc::DgInterfaceRef& I, cons
     delta_max[g] = 0;
     if (p.delta0 > 0) {
       const double inv_s0 = p.delta0 / p.S0;
-      const double nN = disc::dot3(n[g], nu[g]), mN = disc::dot3(m[g], nu[g]);
+      // With crack-face contact a compressive normal force is carried by the contact (§9.9), not by an opening.
+      const double nN_raw = disc::dot3(n[g], nu[g]), mN = disc::dot3(m[g], nu[g]);
+      const double nN = p.contact && nN_raw < 0 ? 0.0 : nN_raw;
       const double a1 = p.alpha1 * p.alpha1, a2 = p.alpha2 * p.alpha2 * p.h * p.h, a3 = p.alpha3 * p.alpha3 * p.h * p.h;
       for (int c = 0; c < 3; ++c) {
-        jx[c] -= inv_s0 * (nN * nu[g][c] + (n[g][c] - nN * nu[g][c]) / a1);
+        jx[c] -= inv_s0 * (nN * nu[g][c] + (n[g][c] - nN_raw * nu[g][c]) / a1);
         jt[c] -= inv_s0 * (mN * nu[g][c] / a2 + (m[g][c] - mN * nu[g][c]) / a3);
       }
       const double d0 = materials::equivalent_traction(p, n[g], m[g], nu[g]) * inv_s0;
@@ -112,17 +114,45 @@ KOKKOS_INLINE_FUNCTION void activation_state(const disc::DgInterfaceRef& I, cons
 
 /// Energies and state of a cohesive interface after one evaluation.
 struct CohesiveInterfaceResult {
-  double stored = 0;      ///< sum_g omega_g phi_g (theory.md §9.7)
+  double stored = 0;      ///< sum_g omega_g (phi_g + U_contact,g) (theory.md §9.7, §9.9)
   double dissipated = 0;  ///< sum_g omega_g D_g
   bool separated = true;  ///< every edge point is fully separated (the interface carries nothing any more)
 };
 
-/// Cohesive forces of an activated interface (theory.md §9.4, §9.6; paper eqs. 55-56): at each edge point the
+/// How much two crack faces still face each other, from a sliding or turning measured against its limit: 1 up to
+/// half the limit, 0 beyond the limit, (1 - q^2)^2 with q = 2|x| - 1 between (theory.md §9.9).
+KOKKOS_INLINE_FUNCTION double facing_weight(double x) {
+  const double a = std::abs(x);
+  if (a <= 0.5) return 1.0;
+  if (a >= 1.0) return 0.0;
+  const double q = 2 * a - 1, w = 1 - q * q;
+  return w * w;
+}
+
+/// The crack-face contact at one edge point (theory.md §9.9) on the law's jumps d = [[phi]] - offset, dt =
+/// [[t]] - offset (the same origin as the cohesive law, so that a closed edge is neither pulled nor pushed), in the
+/// interface frame e: materials::crack_face_contact_energy of the normal gap d.nu + z dt.nu, weighted by how much
+/// the faces still face each other (facing_weight of the sliding out of the surface against h, along the edge
+/// against h_e/2, and of |dt| against 1/2, about 30 degrees between the sides' directors). Adds the contact force and
+/// couple (along nu) to nc, mc and returns the energy per unit reference length.
+KOKKOS_INLINE_FUNCTION double crack_face_contact_forces(const materials::CohesiveParams& p, double edge_length,
+                                                        const double d[3], const double dt[3], const double e[3][3],
+                                                        double nc[3], double mc[3]) {
+  const double facing = facing_weight(disc::dot3(d, e[1]) / p.h) * facing_weight(disc::dot3(d, e[2]) / (0.5 * edge_length)) *
+                        facing_weight(disc::norm3(dt) / 0.5);
+  if (!(facing > 0.0)) return 0.0;
+  double fN, mN;
+  const double energy = materials::crack_face_contact(p.contact_stiffness, p.h, disc::dot3(d, e[0]), disc::dot3(dt, e[0]), fN, mN);
+  for (int c = 0; c < 3; ++c) nc[c] += facing * fN * e[0][c], mc[c] += facing * mN * e[0][c];
+  return facing * energy;
+}
+
+/// Cohesive forces of an activated interface (theory.md §9.4, §9.6, §9.9; paper eqs. 55-56): at each edge point the
 /// jumps less the offset fixed at activation (components in the interface frame, activation_state), the current
 /// co-normal (nu[g] keeps the last good one), the tractions n_c, m_c of the cohesive law with delta_max[g]
-/// updated in place, and the nodal forces
+/// updated in place, plus those of the crack-face contact when the law has it (p.contact), and the nodal forces
 ///   f^A(-) += omega_g n_c N^A_-,  f^A(+) -= omega_g n_c N^A_+,  g^a(-) += omega_g m_c L^a_-,  g^a(+) -= ...
-/// (internal forces: they resist the opening). Outputs are overwritten.
+/// (internal forces: they resist the opening and the interpenetration). Outputs are overwritten.
 KOKKOS_INLINE_FUNCTION CohesiveInterfaceResult cohesive_interface_forces(
     const disc::DgInterfaceRef& I, const materials::CohesiveParams& p, const double xm[3][3], const double tm[2][3],
     const double xp[3][3], const double tp[2][3], const double offset[disc::num_edge_points][6],
@@ -140,7 +170,8 @@ KOKKOS_INLINE_FUNCTION CohesiveInterfaceResult cohesive_interface_forces(
     for (int k = 0; k < 3; ++k)
       for (int c = 0; c < 3; ++c) jx[c] -= offset[g][k] * e[k][c], jt[c] -= offset[g][3 + k] * e[k][c];
     const materials::CohesiveResult cr = materials::cohesive_tractions(p, jx, jt, nu[g], delta_max[g], nc, mc);
-    r.stored += I.omega[g] * cr.stored;
+    const double contact = p.contact ? crack_face_contact_forces(p, 1 / I.inv_he, jx, jt, e, nc, mc) : 0.0;
+    r.stored += I.omega[g] * (cr.stored + contact);
     r.dissipated += I.omega[g] * cr.dissipated;
     r.separated = r.separated && cr.separated;
     for (int c = 0; c < 3; ++c) {

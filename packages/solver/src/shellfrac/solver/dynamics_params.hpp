@@ -48,6 +48,7 @@ struct FractureParams {
   double alpha1 = 1, alpha2 = 1, alpha3 = 1;
   double activation_opening = 0.05;  ///< delta0 / delta_f (docs/theory.md §9.6)
   long seed = 0;                      ///< key of the edges' strength draws (Strength Distribution, theory.md §9.8)
+  bool crack_face_contact = false;    ///< activated edges' faces resist interpenetration (theory.md §9.9)
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
   static FractureParams from_parameters(Teuchos::ParameterList& pl, const params::Context& ctx);
 };

@@ -54,6 +54,9 @@ Fracture::Fracture(const FractureParams& fr, const MeshSets& sets, const ShellMo
     cohesive_[i] = materials::make_cohesive_params(0.5 * (a.thickness + b.thickness), sigma_c,
                                                    0.5 * (ma.fracture_energy + mb.fracture_energy), fr.alpha1,
                                                    fr.alpha2, fr.alpha3, fr.activation_opening);
+    // The crack faces touch with the stiffness of the intact interface's penalty (theory.md §9.9).
+    cohesive_[i].contact_stiffness = model.interface_beta_x[i] * interface_refs_[i].inv_he;
+    cohesive_[i].contact = fr.crack_face_contact;
     if (ma.strength_scatter.scattered() || mb.strength_scatter.scattered()) scattered[i] = 1;
   }
   enabled_ = parallel::any(any, dm_.comm());
