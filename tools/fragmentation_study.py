@@ -49,26 +49,29 @@ def zmr(rate):
     return 4.5 / (1.0 + 4.5 * rate ** (2.0 / 3.0))
 
 
-def ring_deck(rate, seed, cells, fragments, distribution, duration):
-    """The ring's deck and its geometry (radius, circumference, end time)."""
-    circumference = fragments * zmr(rate) * S0
-    radius = circumference / (2 * math.pi)
-    edge = circumference / cells
-    speed = rate * EPS0 * radius
-    end_time = T0 / rate + duration * T0
+def strength_xml(distribution, reference_length):
+    """The material's strength-distribution parameters: Weibull m = 12 with the given reference length, or
+    Uniform +-10 %."""
     if distribution == "Weibull":
-        strength = ('<Parameter name="Strength Distribution" type="string" value="Weibull"/>'
-                    '<Parameter name="Weibull Modulus" type="double" value="12.0"/>'
-                    f'<Parameter name="Weibull Reference Length" type="double" value="{edge:.17g}"/>')
-    else:
-        strength = ('<Parameter name="Strength Distribution" type="string" value="Uniform"/>'
-                    '<Parameter name="Strength Spread" type="double" value="0.1"/>')
-    deck = f"""<ParameterList name="shellfrac">
+        return ('<Parameter name="Strength Distribution" type="string" value="Weibull"/>'
+                '<Parameter name="Weibull Modulus" type="double" value="12.0"/>'
+                f'<Parameter name="Weibull Reference Length" type="double" value="{reference_length:.17g}"/>')
+    if distribution == "Uniform":
+        return ('<Parameter name="Strength Distribution" type="string" value="Uniform"/>'
+                '<Parameter name="Strength Spread" type="double" value="0.1"/>')
+    return ""  # Constant
+
+
+def ring_xml(radius, length, cells, thickness, speed, end_time, strength="", seed=0, checkpoint_steps=0,
+             fields="fragment_id"):
+    """A ring (a tube of one cell along its axis) of the study's material launched outward at `speed`, every edge
+    breakable; `strength` holds the material's distribution parameters (strength_xml)."""
+    return f"""<ParameterList name="shellfrac">
   <ParameterList name="Mesh">
     <Parameter name="Source" type="string" value="Cylinder"/>
     <ParameterList name="Cylinder">
       <Parameter name="Radius" type="double" value="{radius:.17g}"/>
-      <Parameter name="Length" type="double" value="{edge:.17g}"/>
+      <Parameter name="Length" type="double" value="{length:.17g}"/>
       <Parameter name="Axial Elements" type="int" value="1"/>
       <Parameter name="Circumferential Elements" type="int" value="{cells}"/>
       <Parameter name="Block Name" type="string" value="ring"/>
@@ -76,7 +79,7 @@ def ring_deck(rate, seed, cells, fragments, distribution, duration):
   </ParameterList>
   <ParameterList name="Blocks">
     <ParameterList name="ring">
-      <Parameter name="Thickness" type="double" value="{radius / 50:.17g}"/>
+      <Parameter name="Thickness" type="double" value="{thickness:.17g}"/>
       <Parameter name="Material" type="string" value="m"/>
     </ParameterList>
   </ParameterList>
@@ -102,12 +105,25 @@ def ring_deck(rate, seed, cells, fragments, distribution, duration):
     <Parameter name="End Time" type="double" value="{end_time:.17g}"/>
     <Parameter name="Output Interval" type="double" value="0"/>
   </ParameterList>
+  <ParameterList name="Checkpoint">
+    <Parameter name="Step Interval" type="int" value="{checkpoint_steps}"/>
+  </ParameterList>
   <ParameterList name="Output">
     <Parameter name="Progress Interval" type="double" value="0"/>
-    <Parameter name="Fields" type="Array(string)" value="{{fragment_id}}"/>
+    <Parameter name="Fields" type="Array(string)" value="{{{fields}}}"/>
   </ParameterList>
 </ParameterList>
 """
+
+
+def ring_deck(rate, seed, cells, fragments, distribution, duration):
+    """The study's ring at `rate` and its geometry (circumference, end time)."""
+    circumference = fragments * zmr(rate) * S0
+    radius = circumference / (2 * math.pi)
+    edge = circumference / cells
+    end_time = T0 / rate + duration * T0
+    deck = ring_xml(radius, edge, cells, radius / 50, rate * EPS0 * radius, end_time,
+                    strength_xml(distribution, edge), seed)
     return deck, circumference, end_time
 
 

@@ -48,62 +48,13 @@ _spec.loader.exec_module(study)
 
 
 def ring_deck(strength="", seed=0, end_time=8e-6, checkpoint_steps=0):
-    """The ring's deck; `strength` holds the material's distribution parameters as XML lines."""
-    return f"""<ParameterList name="shellfrac">
-  <ParameterList name="Mesh">
-    <Parameter name="Source" type="string" value="Cylinder"/>
-    <ParameterList name="Cylinder">
-      <Parameter name="Radius" type="double" value="0.05"/>
-      <Parameter name="Length" type="double" value="0.00314159"/>
-      <Parameter name="Axial Elements" type="int" value="1"/>
-      <Parameter name="Circumferential Elements" type="int" value="{CELLS}"/>
-      <Parameter name="Block Name" type="string" value="ring"/>
-    </ParameterList>
-  </ParameterList>
-  <ParameterList name="Blocks">
-    <ParameterList name="ring">
-      <Parameter name="Thickness" type="double" value="0.001"/>
-      <Parameter name="Material" type="string" value="aluminium"/>
-    </ParameterList>
-  </ParameterList>
-  <ParameterList name="Materials">
-    <ParameterList name="aluminium">
-      <Parameter name="Density" type="double" value="2700.0"/>
-      <Parameter name="Young's Modulus" type="double" value="70.0e9"/>
-      <Parameter name="Poisson's Ratio" type="double" value="0.0"/>
-      <Parameter name="Cohesive Strength" type="double" value="300.0e6"/>
-      <Parameter name="Fracture Energy" type="double" value="10.0e3"/>
-      {strength}
-    </ParameterList>
-  </ParameterList>
-  <ParameterList name="Initial Conditions">
-    <ParameterList name="launch">
-      <Parameter name="Normal Velocity" type="double" value="70.0"/>
-    </ParameterList>
-  </ParameterList>
-  <ParameterList name="Fracture">
-    <Parameter name="Seed" type="int" value="{seed}"/>
-  </ParameterList>
-  <ParameterList name="Time Integration">
-    <Parameter name="End Time" type="double" value="{end_time}"/>
-    <Parameter name="Output Interval" type="double" value="0"/>
-  </ParameterList>
-  <ParameterList name="Checkpoint">
-    <Parameter name="Step Interval" type="int" value="{checkpoint_steps}"/>
-  </ParameterList>
-  <ParameterList name="Output">
-    <Parameter name="Progress Interval" type="double" value="0"/>
-    <Parameter name="Fields" type="Array(string)" value="{{damage, fragment_id, edge_strength}}"/>
-  </ParameterList>
-</ParameterList>
-"""
+    """The ring's deck; `strength` holds the material's distribution parameters (study.strength_xml)."""
+    return study.ring_xml(0.05, 0.00314159, CELLS, 0.001, 70.0, end_time, strength, seed, checkpoint_steps,
+                          "damage, fragment_id, edge_strength")
 
 
-UNIFORM = ('<Parameter name="Strength Distribution" type="string" value="Uniform"/>'
-           '<Parameter name="Strength Spread" type="double" value="0.1"/>')
-WEIBULL = ('<Parameter name="Strength Distribution" type="string" value="Weibull"/>'
-           '<Parameter name="Weibull Modulus" type="double" value="12.0"/>'
-           '<Parameter name="Weibull Reference Length" type="double" value="0.00314159"/>')
+UNIFORM = study.strength_xml("Uniform", 0.0)
+WEIBULL = study.strength_xml("Weibull", 0.00314159)
 
 
 def read_csv(path):
