@@ -1,10 +1,9 @@
 #pragma once
 /// \file dual_number.hpp
 /// Forward-mode automatic differentiation: a value and its N partial derivatives, for kernels whose forces are the
-/// gradient of an energy that is easy to write and tedious to differentiate by hand (the cohesive interface,
-/// docs/theory.md §9.4). Kernel-safe: plain arrays, no allocation. Only the operations those energies use.
+/// gradient of an energy that is easy to write and tedious to differentiate by hand (the crack-face contact,
+/// docs/theory.md §9.9). Kernel-safe: plain arrays, no allocation. Only the operations those energies use.
 #include <Kokkos_Macros.hpp>
-#include <cmath>
 
 namespace shellfrac {
 
@@ -54,22 +53,6 @@ KOKKOS_INLINE_FUNCTION Dual<N> operator/(const Dual<N>& a, const Dual<N>& b) {
   for (int i = 0; i < N; ++i) r.d[i] = (a.d[i] - r.v * b.d[i]) * inv;
   return r;
 }
-template <int N>
-KOKKOS_INLINE_FUNCTION Dual<N>& operator+=(Dual<N>& a, const Dual<N>& b) {
-  return a = a + b;
-}
-template <int N>
-KOKKOS_INLINE_FUNCTION Dual<N>& operator-=(Dual<N>& a, const Dual<N>& b) {
-  return a = a - b;
-}
-template <int N>
-KOKKOS_INLINE_FUNCTION Dual<N> sqrt(const Dual<N>& a) {
-  Dual<N> r(std::sqrt(a.v));
-  const double half_inv = r.v > 0 ? 0.5 / r.v : 0.0;
-  for (int i = 0; i < N; ++i) r.d[i] = a.d[i] * half_inv;
-  return r;
-}
-
 /// The value of a double or a Dual (for decisions that are not differentiated: branches, gates, histories).
 KOKKOS_INLINE_FUNCTION double value_of(double a) { return a; }
 template <int N>

@@ -76,7 +76,8 @@ KOKKOS_INLINE_FUNCTION void interface_frame(const double nu[3], const double dba
 /// and couple n, m of the nucleation check and its co-normals nu. At each edge point the law starts from the
 /// opening Q0 whose tractions are (n, m) scaled to the strength S0 (time-continuous activation): with the
 /// initial secant s0 = S0/delta0,
-///   [[phi]]0 = (<n.nu> nu + n_S/alpha1^2)/s0 ,   [[t]]0 = ((m.nu) nu/alpha2^2 + m_S/alpha3^2)/(h^2 s0) ,
+///   [[phi]]0 = ((n.nu) nu + n_S/alpha1^2)/s0 ,   [[t]]0 = ((m.nu) nu/alpha2^2 + m_S/alpha3^2)/(h^2 s0) ,
+/// with <n.nu> = max(n.nu, 0) in place of n.nu when the law has crack-face contact (p.contact),
 /// whose effective opening is delta(Q0) = n_eq delta0/S0. The opening of the law is measured from the jumps
 /// now (the DG jumps that the penalty and the lifting held) plus Q0: offset[g] = components in the interface
 /// frame of (current jumps - Q0); delta_max[g] = max(delta0, delta(Q0)). With delta0 = 0 (Gamma = 0, or the
