@@ -8,9 +8,11 @@
 // 3 internal error (all ranks aborted), 4 stopped by SIGTERM after a checkpoint, 5 Static Relaxation not
 // reached by End Time (results written), 6 a result file could not be written (named in the message).
 #include <mpi.h>
+#include <sys/stat.h>
 
 #include <Tpetra_Core.hpp>
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
@@ -22,6 +24,7 @@
 #include "kokkos_options.hpp"
 #include "shellfrac/core/application.hpp"
 #include "shellfrac/core/error.hpp"
+#include "shellfrac/core/files.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/solver/simulation.hpp"
 
@@ -104,12 +107,17 @@ int run(int argc, char** argv) {
       if (!root) return 0;
       const auto valid = shellfrac::solver::Deck::valid_parameters();
       if (i + 1 < args.size()) {
-        std::ofstream out(args[i + 1]);
-        if (!out) {
-          std::cerr << "shellfrac: error: cannot write " << args[i + 1] << "\n";
-          return 1;
+        const std::string& file = args[i + 1];
+        struct stat st {};
+        if (::lstat(file.c_str(), &st) == 0) {  // a deck named after the option is never overwritten
+          std::cerr << "shellfrac: error: --print-valid-parameters " << file << ": the file exists; this option "
+                    << "writes a new file and never replaces one (name a file that does not exist, or omit it to "
+                       "print to standard output)\n";
+          return 2;
         }
-        shellfrac::params::write_documented_xml(out, *valid);
+        std::ostringstream text;
+        shellfrac::params::write_documented_xml(text, *valid);
+        shellfrac::files::OutputFile(file, shellfrac::files::OutputFile::Mode::create).write(text.str());
       } else {
         shellfrac::params::write_documented_xml(std::cout, *valid);
       }
@@ -126,6 +134,10 @@ int run(int argc, char** argv) {
         return 2;
       }
       restart = args[++i];
+      if (restart.empty()) {
+        if (root) std::cerr << "shellfrac: error: --restart was given an empty file name\n\n" << usage;
+        return 2;
+      }
     } else if (!a.empty() && a[0] == '-') {
       if (root) std::cerr << "shellfrac: error: unknown option '" << a << "'\n\n" << usage;
       return 2;
@@ -175,6 +187,9 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   shellfrac::solver::catch_stop_signals();  // before MPI and the set-up: a batch system's signal is never lost
+  // A file beyond the size limit (ulimit -f, a batch system's file-size limit) fails its write (EFBIG), which is
+  // reported naming the file with exit code 6, on every rank at once, instead of a kill by SIGXFSZ on one rank.
+  std::signal(SIGXFSZ, SIG_IGN);
   // MPI first, so that only rank 0 reports a bad Kokkos option; Kokkos reads them in the ScopeGuard.
   MPI_Init(&argc, &argv);
   int code = 2;

@@ -16,11 +16,10 @@ import shutil
 import signal
 import subprocess
 import sys
-import tempfile
 import time
 import unittest
 
-from cli_common import ENV, Launcher
+from cli_common import ENV, DeckTest, Launcher
 
 SRC, SHELLFRAC, MPIEXEC = sys.argv[1:4]
 MPI_PREFLAGS = sys.argv[4:]
@@ -87,23 +86,9 @@ def md5(path):
         return hashlib.md5(f.read()).hexdigest()
 
 
-class Reliability(unittest.TestCase):
-    def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="shellfrac_reliability_")
-
-    def tearDown(self):
-        shutil.rmtree(self.dir, ignore_errors=True)
-
-    def deck(self, *replacements, name="base.xml", text=BASE):
-        for old, new in replacements:
-            self.assertIn(old, text)
-            text = text.replace(old, new)
-        with open(os.path.join(self.dir, name), "w") as f:
-            f.write(text)
-        return name
-
-    def path(self, name):
-        return os.path.join(self.dir, name)
+class Reliability(DeckTest):
+    BASE = BASE
+    PREFIX = "shellfrac_reliability_"
 
     def checkpoint_run(self):
         """The base deck run to 2 ms; returns the checkpoint at step 1200 and its md5."""
@@ -140,6 +125,11 @@ class Reliability(unittest.TestCase):
                       "To continue with changed physics on purpose, add --allow-physics-change", r.stderr)
         self.assertNotIn("End Time' =", r.stderr)  # a free parameter is not a difference
         self.assertEqual(md5(self.path(ck)), digest)
+        r = run(["base.xml", "--restart", ck, "--allow-physics-change"], self.dir)
+        self.assertEqual(r.returncode, 1, "the changed run must not continue the original's files: " + r.stderr)
+        self.deck(("70.0e9", "72e9"), ('value="0.01"', 'value="0.012"'), ('value="2e-3"', 'value="2.2e-3"'),
+                  ('<Parameter name="Probes"', '<Parameter name="Base Name" type="string" value="changed"/>'
+                                               '<Parameter name="Probes"'))
         r = run(["base.xml", "--restart", ck, "--allow-physics-change"], self.dir)
         self.assertEqual(r.returncode, 0, r.stderr)
 
@@ -227,16 +217,15 @@ class Reliability(unittest.TestCase):
         self.assertGreater(refused, 30)
 
     def test_a_failed_checkpoint_write_stops_with_one_line_and_keeps_the_last_checkpoint(self):
-        # The temporary file of the checkpoint at step 200 is a link to /dev/full: the write fails. It used to
-        # print 40 lines of HDF5 diagnostics and exit with 3 (internal error).
-        if not os.path.exists("/dev/full"):
-            self.skipTest("no /dev/full")
-        os.symlink("/dev/full", self.path("base_checkpoint_step200.h5.tmp"))
+        # The temporary file of the checkpoint at step 200 cannot be created (a directory has its name): the write
+        # fails. It used to print 40 lines of HDF5 diagnostics and exit with 3 (internal error).
+        os.mkdir(self.path("base_checkpoint_step200.h5.tmp"))
         r = run([self.deck()], self.dir)
         self.assertEqual(r.returncode, 6, r.stdout + r.stderr)
         self.assertEqual(r.stderr.strip().splitlines(), [
-            "shellfrac: error: base_checkpoint_step200.h5.tmp: cannot create the checkpoint file (disk full, quota, or "
-            "the directory is gone?)"])
+            "shellfrac: error: base_checkpoint_step200.h5.tmp: a result file of this name is a directory; shellfrac "
+            "writes its results only to files of their own (never through a link): remove it, or choose another "
+            "'Output->Base Name' or 'Output->Directory'"])
         self.assertFalse(os.path.exists(self.path("base_checkpoint_step200.h5")))
         self.deck(('value="2e-3"', 'value="2e-4"'))  # the checkpoint before the failure restarts
         r = run(["base.xml", "--restart", "base_checkpoint_step100.h5"], self.dir)

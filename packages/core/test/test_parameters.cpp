@@ -238,12 +238,11 @@ TEST(Parameters, EntriesGivenTwiceAreRefusedWithBothLines) {
             "parameter or sublist once");
 }
 
-// /dev/zero was read to 2.1 GB before the program died: decks are limited to 16 MiB, measured first when they
-// are regular files.
+// /dev/zero was read to 2.1 GB before the program died: a deck must be a regular file (a FIFO would block in
+// open()), of at most 16 MiB, measured before it is read.
 TEST(Parameters, DeckSizeIsLimitedBeforeReading) {
   EXPECT_EQ(read_deck_error("/dev/zero"),
-            "/dev/zero: the input deck is not a regular file and is longer than the 16 "
-            "MiB a deck may have (a device or an endless pipe?)");
+            "/dev/zero: the input deck is a device, not a regular file; name the file itself");
   EXPECT_EQ(read_deck_error("."), ".: is a directory, not an input deck");
   { std::ofstream("huge_deck.xml").seekp(params::max_deck_bytes) << ' '; }
   EXPECT_EQ(read_deck_error("huge_deck.xml"),

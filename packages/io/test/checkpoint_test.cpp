@@ -8,6 +8,8 @@
 //    sorted, and nothing else: no rank but the reader sees a row it did not ask for (docs/parallel.md).
 //  * TheChecksumCoversEveryTable: a value changed in the file (through HDF5, so the chunk checksums stay
 //    valid) is refused by the file checksum.
+//  * TableSizesAreCheckedAgainstTheFileBeforeAllocating: a table declaring 2^40 rows it does not hold is refused
+//    before anything is allocated.
 #include <gtest/gtest.h>
 #include <hdf5.h>
 #include <mpi.h>
@@ -52,6 +54,16 @@ io::CheckpointData share() {
   }
   d.tables["empty"].width = 3;
   return d;
+}
+
+/// The InputError of reading `path`, or "read without complaint". Collective.
+std::string read_error(const std::string& path) {
+  try {
+    io::read_checkpoint(path, MPI_COMM_WORLD);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "read without complaint";
 }
 
 void expect_rows(const io::CheckpointTable& t, const std::vector<GlobalId>& ids) {
@@ -106,12 +118,35 @@ TEST(Checkpoint, TheChecksumCoversEveryTable) {
     H5Dclose(ds), H5Fclose(file);
   }
   MPI_Barrier(MPI_COMM_WORLD);
-  try {
-    io::read_checkpoint(path, MPI_COMM_WORLD);
-    ADD_FAILURE() << "a changed value was read without complaint";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("do not match its checksum"), std::string::npos) << e.what();
+  const std::string error = read_error(path);
+  EXPECT_NE(error.find("do not match its checksum"), std::string::npos) << error;
+}
+
+TEST(Checkpoint, TableSizesAreCheckedAgainstTheFileBeforeAllocating) {
+  // A 59 kB file declaring 16 x 2^24 rows took 4.4 GB and a minute before it was refused; larger ones ended in
+  // bad_alloc. A table of 2^40 rows of 16 values, declared (chunked, never written) in a valid file, is refused at
+  // once, before anything of its size is allocated.
+  const std::string path = file_name("forged");
+  io::write_checkpoint(path, share(), MPI_COMM_WORLD);
+  if (parallel::rank() == 0) {
+    const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    const hid_t g = H5Gcreate2(file, "/tables/huge", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    const hsize_t rows = hsize_t(1) << 40, dims[2] = {rows, 16}, chunk[2] = {4096, 16};
+    for (const char* name : {"ids", "values"}) {
+      const bool ids = std::string(name) == "ids";
+      const hid_t space = H5Screate_simple(ids ? 1 : 2, dims, nullptr), dcpl = H5Pcreate(H5P_DATASET_CREATE);
+      H5Pset_chunk(dcpl, ids ? 1 : 2, chunk);
+      const hid_t ds = H5Dcreate2(g, name, ids ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, dcpl,
+                                  H5P_DEFAULT);
+      ASSERT_GE(ds, 0);
+      H5Dclose(ds), H5Pclose(dcpl), H5Sclose(space);
+    }
+    H5Gclose(g), H5Fclose(file);
   }
+  MPI_Barrier(MPI_COMM_WORLD);
+  EXPECT_EQ(read_error(path), path + ": table huge declares 1099511627776 rows of 16 values, more than the file "
+                                     "holds: the file is corrupt");
 }
 
 }  // namespace

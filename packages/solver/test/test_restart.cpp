@@ -13,10 +13,14 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
+#include <vector>
 #include <string>
 
 #include "cracked_strip.hpp"
 #include "deck_test_util.hpp"
+#include "shellfrac/core/error.hpp"
+#include "shellfrac/io/checkpoint.hpp"
 #include "shellfrac/io/exodus_results.hpp"
 #include "shellfrac/mesh/generators.hpp"
 #include "shellfrac/meshio/exodus_mesh_io.hpp"
@@ -174,3 +178,56 @@ TEST(Restart, ExactOutputTimesLandOnEveryFrameAndEndTime) {
   expect_same(ref, split, "Exact Output Times, split at an output time");
 }
 
+
+// A checkpoint whose checksum is valid but whose contents no run can have written (forged or written by another
+// program) used to restart with exit 0: a negative or absurd step or time, a NaN, a zero director, a mode 7. Each
+// is written with a valid checksum (io::write_checkpoint) and refused by the restart, naming the file and the value.
+TEST(Restart, RefusesCheckpointValuesNoRunCanHaveWritten) {
+  const auto root = work_dir("forged_checkpoints");
+  if (parallel::rank() == 0) write_cracked_strip(root + "/strip_mesh.exo");
+  const auto dir = fresh(root + "/run");
+  write_deck(dir + "/run.xml", *strip_deck(dir, 10.5e-6));
+  solver::Simulation(dir + "/run.xml", MPI_COMM_WORLD).run();
+  const std::string good = checkpoint_in(dir);
+  write_deck(dir + "/run.xml", *strip_deck(dir, 14e-6));
+  const io::CheckpointData original = io::read_checkpoint(good, MPI_COMM_WORLD);
+  const auto set_value = [](io::CheckpointData& d, const std::string& table, std::size_t index, double v) {
+    ASSERT_TRUE(d.tables.count(table)) << table;
+    ASSERT_LT(index, d.tables.at(table).values.size()) << table;
+    d.tables.at(table).values[index] = v;
+  };
+  struct Forgery {
+    std::string what, message;
+    std::function<void(io::CheckpointData&)> change;
+  };
+  const std::vector<Forgery> forgeries = {
+      {"negative step", "the checkpoint's step -3 is not a whole number >= 0",
+       [](io::CheckpointData& d) { d.scalars["step"] = -3; }},
+      {"absurd step", "the checkpoint's step 1e+300 is not a whole number >= 0",
+       [](io::CheckpointData& d) { d.scalars["step"] = 1e300; }},
+      {"time NaN", "the checkpoint's time nan at step",
+       [](io::CheckpointData& d) { d.scalars["time"] = std::nan(""); }},
+      {"negative time", "the checkpoint's time -1 at step", [](io::CheckpointData& d) { d.scalars["time"] = -1; }},
+      {"velocity NaN", "its table 'element v' holds nan for element",
+       [&](io::CheckpointData& d) { set_value(d, "element v", 4, std::nan("")); }},
+      {"zero director", "its director 1 of element 1 has the length 0, not 1",
+       [&](io::CheckpointData& d) {
+         for (int c = 0; c < 3; ++c) set_value(d, "element t", std::size_t(c), 0.0);
+       }},
+      {"mode 7", "its table 'interface mode' holds the mode 7 for interface",
+       [&](io::CheckpointData& d) { set_value(d, "interface mode", 0, 7.0); }},
+  };
+  for (const auto& f : forgeries) {
+    io::CheckpointData forged = original;
+    f.change(forged);
+    const std::string file = dir + "/forged.h5";
+    io::write_checkpoint(file, forged, MPI_COMM_WORLD);  // a valid checksum over the forged contents
+    try {
+      solver::Simulation sim(dir + "/run.xml", MPI_COMM_WORLD, file);
+      ADD_FAILURE() << f.what << ": restarted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(file + ": "), std::string::npos) << f.what << ": " << e.what();
+      EXPECT_NE(std::string(e.what()).find(f.message), std::string::npos) << f.what << ": " << e.what();
+    }
+  }
+}

@@ -22,6 +22,10 @@ int run_guarded(const char* program_name, const std::function<int()>& body) {
     // Output errors are agreed by all ranks too (the writer checks every write).
     if (parallel::rank() == 0) std::cerr << program_name << ": error: " << e.what() << "\n";
     return 6;
+  } catch (const NumericalError& e) {
+    // A blow-up is found by a reduction over all ranks and thrown on every rank: the physics, not a bug.
+    if (parallel::rank() == 0) std::cerr << program_name << ": error: " << e.what() << "\n";
+    return 3;
   } catch (const std::exception& e) {
     std::cerr << program_name << ": internal error on rank " << parallel::rank() << ": " << e.what() << "\n";
     std::fflush(stderr);

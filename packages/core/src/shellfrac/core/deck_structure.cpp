@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "shellfrac/core/error.hpp"
+#include "shellfrac/core/files.hpp"
 
 namespace shellfrac::params {
 
@@ -95,9 +96,10 @@ std::string read_deck_text(const std::string& file) {
   struct stat st {};
   SHELLFRAC_INPUT_REQUIRE(stat(file.c_str(), &st) == 0, cannot_open);
   SHELLFRAC_INPUT_REQUIRE(!S_ISDIR(st.st_mode), file << ": is a directory, not an input deck");
+  files::require_regular_input(file, "the input deck");  // a FIFO would block in open(), a device never end
   const std::size_t mib = max_deck_bytes >> 20;
   SHELLFRAC_INPUT_REQUIRE(
-      !S_ISREG(st.st_mode) || static_cast<std::size_t>(st.st_size) <= max_deck_bytes,
+      static_cast<std::size_t>(st.st_size) <= max_deck_bytes,
       file << ": the input deck has " << st.st_size << " bytes, more than the " << mib << " MiB a deck may have");
   std::ifstream in(file, std::ios::binary);
   SHELLFRAC_INPUT_REQUIRE(in.good(), cannot_open);
@@ -107,9 +109,8 @@ std::string read_deck_text(const std::string& file) {
     in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
     text.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
   }
-  SHELLFRAC_INPUT_REQUIRE(text.size() <= max_deck_bytes, file << ": the input deck is not a regular file and is longer "
-                                                              << "than the " << mib << " MiB a deck may have "
-                                                              << "(a device or an endless pipe?)");
+  SHELLFRAC_INPUT_REQUIRE(text.size() <= max_deck_bytes, file << ": the input deck grew beyond the " << mib
+                                                              << " MiB a deck may have while it was read");
   return text;
 }
 

@@ -2,8 +2,8 @@
 /// \file exodus_api.hpp
 /// Internal helpers around the Exodus II C API (libexodusii 6.02), shared by shellfrac::io (results) and
 /// shellfrac::meshio (meshes). Not part of the public API: include it only from .cpp files.
-///  * SHELLFRAC_EXO_CHECK(call, msg): a failed call (return < 0) throws shellfrac::Error (writing; our fault or
-///    the file system's). Positive returns are Exodus warnings and are accepted.
+///  * SHELLFRAC_EXO_CHECK(call, msg): a failed call (return < 0) while writing throws shellfrac::OutputError naming
+///    the file (msg) and Exodus' reason. Positive returns are Exodus warnings and are accepted.
 ///  * SHELLFRAC_EXO_INPUT_CHECK(call, msg): the same, but throws shellfrac::InputError (reading a user's file).
 ///  * exodus::File owns an open file id; files are opened/created with double words and the 64-bit integer API.
 #include <exodusII.h>
@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "shellfrac/core/error.hpp"
+#include "shellfrac/core/files.hpp"
 
 namespace shellfrac::exodus {
 
@@ -73,11 +74,14 @@ inline File open_read(const std::string& path) {
   return f;
 }
 
-/// Creates (clobbers) a file with 8-byte reals on disk and the 64-bit integer API (32-bit integers on disk,
-/// the most widely readable form). Returns a closed File on failure.
+/// Creates (replaces) a file with 8-byte reals on disk and the 64-bit integer API (32-bit integers on disk,
+/// the most widely readable form). An existing regular file or symbolic link of that name is removed first (a link
+/// is never followed), any other kind of file is an OutputError (core/files.hpp); the file is then created
+/// exclusively, so a link planted meanwhile is not followed either. Returns a closed File on failure.
 inline File create(const std::string& path) {
+  files::remove_result(path);
   int cpu_ws = 8, io_ws = 8;
-  const int id = ex_create(path.c_str(), EX_CLOBBER | EX_ALL_INT64_API, &cpu_ws, &io_ws);
+  const int id = ex_create(path.c_str(), EX_NOCLOBBER | EX_ALL_INT64_API, &cpu_ws, &io_ws);
   if (id < 0) return File();
   ex_set_max_name_length(id, MAX_NAME_LENGTH);
   return File(id);
@@ -161,7 +165,12 @@ inline std::string upper(std::string s) {
 #define SHELLFRAC_EXO_CHECK(call, msg)                                                                    \
   do {                                                                                                  \
     const int shellfrac_exo_rc_ = (call);                                                               \
-    SHELLFRAC_REQUIRE(shellfrac_exo_rc_ >= 0, msg << ": " #call " failed: " << ::shellfrac::exodus::last_error()); \
+    if (shellfrac_exo_rc_ < 0) {                                                                        \
+      std::ostringstream shellfrac_os_;                                                                 \
+      shellfrac_os_ << msg << ": writing failed (" << ::shellfrac::exodus::last_error()                 \
+                    << "; disk full, quota or file removed?)";                                          \
+      throw ::shellfrac::OutputError(shellfrac_os_.str());                                              \
+    }                                                                                                   \
   } while (0)
 
 /// Checks an Exodus call made while reading a user's file: a negative return throws shellfrac::InputError.

@@ -1,6 +1,7 @@
 #include "shellfrac/io/checkpoint.hpp"
 
 #include <hdf5.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -13,6 +14,7 @@
 
 #include "shellfrac/core/digest.hpp"
 #include "shellfrac/core/error.hpp"
+#include "shellfrac/core/files.hpp"
 #include "shellfrac/core/parallel.hpp"
 
 namespace shellfrac::io {
@@ -23,6 +25,8 @@ constexpr const char* format_tag = "shellfrac checkpoint 5";
 
 /// Rows per HDF5 chunk of a table (chunked storage carries the Fletcher32 checksum of every chunk).
 constexpr hsize_t rows_per_chunk = 4096;
+/// The widest table a checkpoint may hold (the widest written: the plastic state, 9 values per quadrature point).
+constexpr hsize_t max_table_width = 1024;
 /// Rows of a table that rank 0 gathers and writes at a time (whole chunks): what bounds its memory.
 constexpr std::size_t rows_per_block = 4 * rows_per_chunk;
 
@@ -152,11 +156,14 @@ Handle dataset_properties(int rank, const hsize_t* dims) {
 class FileWriter {
  public:
   FileWriter(const std::string& path, const CheckpointData& header, std::size_t num_tables)
-      : path_(path), tmp_(path + ".tmp"), fapl_(H5Pcreate(H5P_FILE_ACCESS), H5Pclose), file_(-1, H5Fclose),
-        tables_(-1, H5Gclose) {
+      : path_(path), fapl_(H5Pcreate(H5P_FILE_ACCESS), H5Pclose), file_(-1, H5Fclose), tables_(-1, H5Gclose) {
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors are reported by us, not printed by HDF5
     // The 1.10 file format: the superblock and object headers (which hold the attributes) carry checksums too.
     H5Pset_libver_bounds(fapl_.id, H5F_LIBVER_V110, H5F_LIBVER_LATEST);
+    // Never through a link: the final name must be a file of its own (or absent); the temporary file is made anew,
+    // exclusively, then opened by HDF5 (which truncates the empty file it finds).
+    files::require_result_path(path_);
+    tmp_ = files::fresh_temporary(path_);
     file_.id = H5Fcreate(tmp_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl_.id);
     check(file_.id >= 0, tmp_, "cannot create the checkpoint file");
     write_string_attribute(file_.id, "format", format_tag, tmp_);
@@ -181,7 +188,7 @@ class FileWriter {
     values_ = Handle(-1, H5Dclose);
     H5Gclose(tables_.id), tables_.id = -1;
     H5Fclose(file_.id), file_.id = -1;
-    std::remove(tmp_.c_str());
+    ::unlink(tmp_.c_str());
   }
   FileWriter(const FileWriter&) = delete;
   FileWriter& operator=(const FileWriter&) = delete;
@@ -230,6 +237,7 @@ class FileWriter {
     check(H5Fflush(file_.id, H5F_SCOPE_GLOBAL) >= 0, tmp_, "cannot flush the checkpoint file");
     check(H5Fclose(file_.id) >= 0, tmp_, "cannot close the checkpoint file");
     file_.id = -1;
+    files::require_result_path(path_);
     check(std::rename(tmp_.c_str(), path_.c_str()) == 0, path_, "cannot rename " + tmp_ + " to it");
   }
 
@@ -304,6 +312,12 @@ class FileReader {
     H5Sget_simple_extent_dims(s1.id, &n, nullptr);
     H5Sget_simple_extent_dims(s2.id, dims, nullptr);
     if (dims[0] != n) throw InputError(path_ + ": table " + name + ": ids and values differ in length");
+    // Sizes are believed only as far as the file holds the data: a damaged or forged header must not make us
+    // allocate what the file does not contain.
+    if (dims[1] > max_table_width || H5Dget_storage_size(ids.id) < n * sizeof(GlobalId) ||
+        H5Dget_storage_size(values_.id) < n * dims[1] * sizeof(double))
+      throw InputError(path_ + ": table " + name + " declares " + std::to_string(n) + " rows of " +
+                       std::to_string(dims[1]) + " values, more than the file holds: the file is corrupt");
     CheckpointTable t;
     t.width = width_ = static_cast<int>(dims[1]);
     t.ids.resize(n);

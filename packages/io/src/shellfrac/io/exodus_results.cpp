@@ -235,7 +235,7 @@ class FileWriter {
     for (std::size_t i = 0; i < ne; ++i) block_elements_[l.element_block[i]].push_back(i);
 
     file_ = exodus::create(path);
-    SHELLFRAC_REQUIRE(file_.is_open(), path << ": cannot create the results file: " << exodus::last_error());
+    if (!file_.is_open()) throw OutputError(path + ": cannot create the results file: " + exodus::last_error());
     const int id = file_.id();
     // History column names may exceed Exodus' default 32 characters: the file declares the longest before its
     // dimensions are defined, and stores them whole.
@@ -774,10 +774,12 @@ std::string rank_file_name(const std::string& path, int np, int rank) {
 struct ExodusResultsWriter::Impl {
   FileWriter writer;
   std::size_t num_vectors = 0;
+  MPI_Comm comm = MPI_COMM_NULL;
 };
 
 ExodusResultsWriter::ExodusResultsWriter(const std::string& path, ResultsLayout layout, MPI_Comm comm)
     : impl_(std::make_unique<Impl>()) {
+  impl_->comm = comm;
   int np = 1, rank = 0;
   MPI_Comm_size(comm, &np);
   MPI_Comm_rank(comm, &rank);
@@ -812,10 +814,7 @@ ExodusResultsWriter::ExodusResultsWriter(const std::string& path, ResultsLayout 
     failure = std::current_exception();
   }
   // Collective: every rank learns whether all files were created, so no rank runs on alone.
-  int ok = failure ? 0 : 1, all_ok = 0;
-  MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, comm);
-  if (failure) std::rethrow_exception(failure);
-  SHELLFRAC_REQUIRE(all_ok == 1, file_ << ": another rank failed to create its results file (see its message)");
+  parallel::on_all_then_agree([&] { if (failure) std::rethrow_exception(failure); }, comm);
 }
 
 ExodusResultsWriter::~ExodusResultsWriter() = default;
@@ -855,7 +854,11 @@ int ExodusResultsWriter::write_step(double time, const NodalComponent& nodal,
   }
   SHELLFRAC_REQUIRE(global.size() == w.num_global(),
                     file_ << ": write_step got " << global.size() << " global values, expected " << w.num_global());
-  return w.put_step(time, nodal_variable, element_ptr, global.data());
+  // Every rank learns whether every file took the frame: a failed write stops all ranks at once (exit 6).
+  int index = 0;
+  parallel::on_all_then_agree([&] { index = w.put_step(time, nodal_variable, element_ptr, global.data()); },
+                              impl_->comm);
+  return index;
 }
 
 std::vector<std::string> find_rank_files(const std::string& path) {

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "shellfrac/core/error.hpp"
+#include "shellfrac/core/files.hpp"
 #include "shellfrac/exodus/exodus_api.hpp"
 #include "shellfrac/meshio/gmsh_reader.hpp"
 
@@ -580,7 +581,7 @@ void write_exodus_mesh(const mesh::SerialMesh& mesh, const std::string& path) {
   for (std::size_t k = 0; k < ne; ++k) file_number[order[k]] = static_cast<std::int64_t>(k) + 1;
 
   exodus::File file = exodus::create(path);
-  SHELLFRAC_REQUIRE(file.is_open(), path << ": cannot create the Exodus file: " << exodus::last_error());
+  if (!file.is_open()) throw OutputError(path + ": cannot create the Exodus file: " + exodus::last_error());
   const int id = file.id();
 
   ex_init_params p{};
@@ -651,7 +652,8 @@ void write_exodus_mesh(const mesh::SerialMesh& mesh, const std::string& path) {
 
 mesh::SerialMesh read_mesh_file(const std::string& path) {
   std::error_code ec;
-  SHELLFRAC_INPUT_REQUIRE(std::filesystem::is_regular_file(path, ec), path << ": mesh file not found");
+  SHELLFRAC_INPUT_REQUIRE(std::filesystem::exists(path, ec), path << ": mesh file not found");
+  files::require_regular_input(path, "the mesh file");  // a FIFO would block in open(), a device never end
   std::string ext = exodus::upper(std::filesystem::path(path).extension().string());
   if (ext == ".MSH") return read_gmsh(path);
   if (ext == ".EXO" || ext == ".E" || ext == ".G" || ext == ".GEN" || ext == ".EX2") return read_exodus_mesh(path);

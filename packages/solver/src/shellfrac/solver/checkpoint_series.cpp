@@ -8,19 +8,15 @@
 
 namespace shellfrac::solver {
 
-namespace {
-
-std::string without_h5(const std::string& file) {
+std::string checkpoint_stem(const std::string& file) {
   const std::string ext = ".h5";
   const bool has = file.size() > ext.size() && file.compare(file.size() - ext.size(), ext.size(), ext) == 0;
   return has ? file.substr(0, file.size() - ext.size()) : file;
 }
 
-}  // namespace
-
 CheckpointSeries::CheckpointSeries(const CheckpointParams& params, const std::string& restart_file,
                                    RestartFingerprint fingerprint, MPI_Comm comm)
-    : stem_(without_h5(params.file)),
+    : stem_(checkpoint_stem(params.file)),
       restart_file_(restart_file),
       keep_(params.keep),
       fingerprint_(std::move(fingerprint)),

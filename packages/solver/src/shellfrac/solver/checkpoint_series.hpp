@@ -16,6 +16,9 @@ namespace shellfrac::solver {
 
 struct CheckpointParams;
 
+/// The stem of the series named by Checkpoint->File: the name without ".h5".
+std::string checkpoint_stem(const std::string& file);
+
 class CheckpointSeries {
  public:
   /// `restart_file`: the checkpoint the run started from ("" if none).

@@ -93,6 +93,13 @@ void read_output(Teuchos::ParameterList& pl, const params::Context& ctx, Deck& d
   params::validate(out, *OutputParams::valid_parameters(), ctx / "Output");
   d.output.base_name = out.get<std::string>("Base Name");
   if (d.output.base_name.empty()) d.output.base_name = stem_of(file);
+  // A result name stays in the output directory: no directory part, no '.' or '..' of its own.
+  const std::string& base = d.output.base_name;
+  SHELLFRAC_INPUT_REQUIRE(base != "." && base != ".." && base.find('/') == std::string::npos &&
+                              base.find('\0') == std::string::npos,
+                          file << ": 'Output->Base Name' = '" << base << "' is not a file name: the results are "
+                               << "written in 'Output->Directory' under names made of the base name, which must not "
+                               << "contain '/' or be '.' or '..'; set the directory with 'Output->Directory'");
   d.output.directory = out.get<std::string>("Directory");
   for (const auto& p : out.get<Teuchos::Array<std::string>>("Probes")) {
     SHELLFRAC_INPUT_REQUIRE(std::find(d.output.probes.begin(), d.output.probes.end(), p) == d.output.probes.end(),
@@ -126,14 +133,22 @@ void read_output(Teuchos::ParameterList& pl, const params::Context& ctx, Deck& d
   if (!d.checkpoint.restart_from.empty() && d.checkpoint.restart_from.front() != '/')
     d.checkpoint.restart_from =
         (directory_of(file).empty() ? std::string() : directory_of(file) + "/") + d.checkpoint.restart_from;
-  if (!d.output.directory.empty()) {
+  const auto require_writable_directory = [&](const std::string& dir, const std::string& parameter) {
     struct stat st {};
-    SHELLFRAC_INPUT_REQUIRE(stat(d.output.directory.c_str(), &st) == 0 && S_ISDIR(st.st_mode),
-                            file << ": 'Output->Directory' = '" << d.output.directory << "' is not an existing directory");
-    SHELLFRAC_INPUT_REQUIRE(access(d.output.directory.c_str(), W_OK | X_OK) == 0,
-                            file << ": 'Output->Directory' = '" << d.output.directory
+    SHELLFRAC_INPUT_REQUIRE(stat(dir.c_str(), &st) == 0 && S_ISDIR(st.st_mode),
+                            file << ": " << parameter << " = '" << dir << "' is not an existing directory");
+    SHELLFRAC_INPUT_REQUIRE(access(dir.c_str(), W_OK | X_OK) == 0,
+                            file << ": " << parameter << " = '" << dir
                                  << "' is not writable (no permission, or a read-only file system)");
-  }
+  };
+  if (!d.output.directory.empty()) require_writable_directory(d.output.directory, "'Output->Directory'");
+  // Checked now, not at the first checkpoint hours later.
+  const std::string& series = d.checkpoint.file;
+  SHELLFRAC_INPUT_REQUIRE(!series.empty() && series.back() != '/',
+                          file << ": 'Checkpoint->File' = '" << series << "' names a directory, not a file");
+  const std::string series_directory = directory_of(series);
+  if (!series_directory.empty())
+    require_writable_directory(series_directory, "the directory of 'Checkpoint->File' ('" + series + "')");
 }
 
 /// Velocities above the fastest elastic wave speed sqrt(E/rho) of the deck's materials strain the shell by more

@@ -10,6 +10,7 @@
 #include "shellfrac/core/digest.hpp"
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
+#include "shellfrac/mesh/serial_mesh.hpp"
 #include "shellfrac/solver/deck.hpp"
 
 namespace shellfrac::solver {
@@ -89,6 +90,27 @@ std::string mesh_digest(const decomposition::DistributedMesh& dm) {
   return Digest::from_lanes(sums[0], sums[1]).hex() + " (" + std::to_string(dm.num_global_elements()) + " elements)";
 }
 
+/// A digest of the mesh's named sets (node, side and element sets: names, ids and members, in file order): the
+/// supports, loads and probes that name them act on these entities. The same on every rank (the whole mesh).
+std::string sets_digest(const mesh::SerialMesh& m) {
+  Digest d;
+  for (const auto& s : m.node_sets) {
+    d.add(std::string("node set ") + s.name), d.add(std::int64_t(s.id));
+    for (const GlobalId n : s.nodes) d.add(std::int64_t(n));
+  }
+  for (const auto& s : m.side_sets) {
+    d.add(std::string("side set ") + s.name), d.add(std::int64_t(s.id));
+    for (std::size_t i = 0; i < s.elements.size(); ++i)
+      d.add(std::int64_t(s.elements[i])), d.add(std::int64_t(s.local_edges[i]));
+  }
+  for (const auto& s : m.element_sets) {
+    d.add(std::string("element set ") + s.name), d.add(std::int64_t(s.id));
+    for (const GlobalId e : s.elements) d.add(std::int64_t(e));
+  }
+  return d.hex() + " (" + std::to_string(m.node_sets.size()) + " node sets, " + std::to_string(m.side_sets.size()) +
+         " side sets, " + std::to_string(m.element_sets.size()) + " element sets)";
+}
+
 /// "'path' = deck value (checkpoint: value)" for every difference, at most `limit` of them.
 std::string differences(const std::map<std::string, std::string>& deck, const std::map<std::string, std::string>& ck) {
   std::ostringstream os;
@@ -108,9 +130,11 @@ std::string differences(const std::map<std::string, std::string>& deck, const st
 
 }  // namespace
 
-RestartFingerprint RestartFingerprint::of(const Deck& deck, const decomposition::DistributedMesh& dm) {
+RestartFingerprint RestartFingerprint::of(const Deck& deck, const decomposition::DistributedMesh& dm,
+                                          const mesh::SerialMesh& whole) {
   RestartFingerprint f;
   f.mesh = mesh_digest(dm);
+  f.sets = sets_digest(whole);
   std::map<std::string, std::string> lines;
   if (!deck.expanded.is_null()) physics_lines(*deck.expanded, "", lines);
   for (const auto& [path, value] : lines) f.physics += path + " = " + value + "\n";
@@ -120,6 +144,7 @@ RestartFingerprint RestartFingerprint::of(const Deck& deck, const decomposition:
 void RestartFingerprint::stamp(io::CheckpointData& data) const {
   data.strings["fingerprint mesh"] = mesh;
   data.strings["fingerprint physics"] = physics;
+  data.strings["fingerprint sets"] = sets;
 }
 
 void RestartFingerprint::check(const io::CheckpointData& data, const std::string& file,
@@ -134,6 +159,13 @@ void RestartFingerprint::check(const io::CheckpointData& data, const std::string
                                << ", this deck's mesh " << mesh
                                << "): coordinates, connectivity, element blocks or refinement differ; a checkpoint "
                                   "restarts only on the mesh it was written for");
+  // Checkpoints written before the sets were part of the fingerprint do not record them.
+  const auto recorded_sets = data.strings.find("fingerprint sets");
+  SHELLFRAC_INPUT_REQUIRE(recorded_sets == data.strings.end() || recorded_sets->second == sets,
+                          file << ": the checkpoint was written for a mesh with other node, side or element sets ("
+                               << recorded_sets->second << "; this deck's mesh: " << sets
+                               << "): the supports, loads and probes that name them would act on other entities; a "
+                                  "checkpoint restarts only on the mesh it was written for");
   if (allow_physics_change) return;
   const std::string diff = differences(parse_lines(physics), parse_lines(get("fingerprint physics")));
   SHELLFRAC_INPUT_REQUIRE(diff.empty(),

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "shellfrac/core/digest.hpp"
+#include "shellfrac/core/files.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/io/exodus_results.hpp"
@@ -37,17 +38,18 @@ std::vector<std::string> info_records(const Teuchos::ParameterList& deck, const 
   return lines;
 }
 
-/// Removes `path` and the files of any per-rank set `path.<n>.<r>`.
+/// Removes `path` and the files of any per-rank set `path.<n>.<r>` (links themselves, never what they point to;
+/// anything else of such a name is an OutputError: core/files.hpp).
 void remove_stale_results(const std::string& path) {
   namespace fs = std::filesystem;
   const fs::path p(path);
   const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
   const std::regex set_file(std::regex_replace(p.filename().string(), std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
                             R"(\.[0-9]+\.[0-9]+)");
+  files::remove_result(path);
   std::error_code ec;
-  fs::remove(p, ec);
   for (const auto& entry : fs::directory_iterator(dir, ec))
-    if (std::regex_match(entry.path().filename().string(), set_file)) fs::remove(entry.path(), ec);
+    if (std::regex_match(entry.path().filename().string(), set_file)) files::remove_result(entry.path().string());
 }
 
 }  // namespace
@@ -132,29 +134,64 @@ io::ResultsLayout results_layout(const Deck& deck, const RunModel& model, const 
   return layout;
 }
 
-/// A CSV table: a new file, or (restart) the existing one kept through `keep_through`.
-std::unique_ptr<io::HistoryWriter> csv(const std::string& path, const std::vector<std::string>& columns, bool resume,
-                                       double keep_through, MPI_Comm comm) {
-  return resume ? std::make_unique<io::HistoryWriter>(path, columns, keep_through, comm)
-                : std::make_unique<io::HistoryWriter>(path, columns, comm);
+/// The keys of a CSV table's mark in a checkpoint's header.
+std::string bytes_key(const std::string& table) { return table + " table bytes"; }
+std::string digest_key(const std::string& table) { return table + " table digest"; }
+std::string file_key(const std::string& table) { return table + " table file"; }
+
+bool exists(const std::string& path) {
+  std::error_code ec;
+  return std::filesystem::symlink_status(path, ec).type() != std::filesystem::file_type::not_found;
 }
 
 }  // namespace
 
 ResultPaths::ResultPaths(const Deck& deck)
-    : exodus(deck.output.path(".exo")),
-      history(deck.output.path("_history.csv")),
-      fragments(deck.output.path("_fragments.csv")),
-      cracks(deck.output.path("_cracks.csv")),
-      checkpoint(deck.checkpoint.file) {}
+    : checkpoint(deck.checkpoint.file), directory_(deck.output.directory), base_(deck.output.base_name) {
+  name(deck.output.path(""));
+}
 
-std::string ResultPaths::restart_exodus(long step) const {
-  return exodus.substr(0, exodus.size() - 4) + ".restart" + std::to_string(step) + ".exo";
+std::string ResultPaths::in_directory(const std::string& file_name) const {
+  return directory_.empty() ? file_name : directory_ + "/" + file_name;
+}
+
+bool ResultPaths::of_this_base(const std::string& file_name, const std::string& suffix) const {
+  if (file_name == base_ + suffix) return true;
+  const std::string restart = base_ + ".restart";
+  if (file_name.size() <= restart.size() + suffix.size() || file_name.compare(0, restart.size(), restart) != 0 ||
+      file_name.compare(file_name.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return false;
+  const std::string step = file_name.substr(restart.size(), file_name.size() - restart.size() - suffix.size());
+  return step.find_first_not_of("0123456789") == std::string::npos;
+}
+
+void ResultPaths::name(const std::string& prefix) {
+  prefix_ = prefix;
+  exodus = prefix + ".exo", history = prefix + "_history.csv", fragments = prefix + "_fragments.csv";
+  cracks = prefix + "_cracks.csv", lock = prefix + ".lock";
+}
+
+ResultPaths ResultPaths::restarted(long step) const {
+  ResultPaths r = *this;
+  r.name(prefix_ + ".restart" + std::to_string(step));
+  return r;
+}
+
+TableMarks table_marks(const io::CheckpointData& header) {
+  TableMarks marks;
+  for (const char* table : {"history", "fragments", "cracks"}) {
+    const auto bytes = header.scalars.find(bytes_key(table));
+    const auto digest = header.strings.find(digest_key(table));
+    const auto file = header.strings.find(file_key(table));
+    if (bytes != header.scalars.end() && digest != header.strings.end() && file != header.strings.end())
+      marks[table] = {static_cast<long long>(bytes->second), digest->second, file->second};
+  }
+  return marks;
 }
 
 RunOutputs::RunOutputs(const Deck& deck, RunModel& model, const ResultsSets& sets,
                        const std::vector<std::string>& probe_names, const std::vector<std::vector<char>>& probe_members,
-                       long restart_step, double e0, MPI_Comm comm)
+                       long restart_step, const TableMarks& marks, double e0, MPI_Comm comm)
     : deck_(deck),
       model_(model),
       probe_names_(probe_names),
@@ -164,15 +201,16 @@ RunOutputs::RunOutputs(const Deck& deck, RunModel& model, const ResultsSets& set
       element_written_(written(element_result_names(), deck.output.fields)) {
   const ResultPaths paths(deck);
   const bool restarted = restart_step >= 0;
-  exodus_path_ = restarted ? paths.restart_exodus(restart_step) : paths.exodus;
+  const ResultPaths restart_paths = paths.restarted(std::max(restart_step, 0L));
+  exodus_path_ = restarted ? restart_paths.exodus : paths.exodus;
   // Results of an earlier run with another rank count would sit beside ours and confuse ParaView (which opens
   // a per-rank set from any of its files): remove <base>.exo and every <base>.exo.<n>.<r> first.
   parallel::on_root_then_agree(
       [&] {
         remove_stale_results(exodus_path_);
         if (!restarted) {  // fragment and crack tables of an earlier run would mislead
-          std::filesystem::remove(paths.fragments);
-          std::filesystem::remove(paths.cracks);
+          files::remove_result(paths.fragments);
+          files::remove_result(paths.cracks);
         }
       },
       0, comm);
@@ -188,13 +226,34 @@ RunOutputs::RunOutputs(const Deck& deck, RunModel& model, const ResultsSets& set
                                                condition_names_, std::vector<double>(6 * condition_names_.size())))
     columns.push_back(name);
   exodus_ = std::make_unique<io::ExodusResultsWriter>(exodus_path_, results_layout(deck, model, sets, columns), comm);
+  // A table: a new file, or after a restart the table the checkpoint names continued if it is this base's and
+  // provably the checkpointed run's; else a new file (the table on disk is left as it is).
+  const auto table = [&](const char* name, const std::string& suffix, const std::vector<std::string>& table_columns) {
+    const std::string fresh = paths.prefix() + suffix;
+    if (!restarted) return std::make_unique<io::HistoryWriter>(fresh, table_columns, comm);
+    const auto mark = marks.find(name);
+    const bool ours = mark != marks.end() && paths.of_this_base(mark->second.file, suffix);
+    if (ours) {
+      const std::string recorded = paths.in_directory(mark->second.file);
+      if (auto resumed = io::HistoryWriter::resume(recorded, table_columns, mark->second, comm)) return resumed;
+    }
+    const std::string path = exists(fresh) ? restart_paths.prefix() + suffix : fresh;
+    if (ours || mark == marks.end())
+      notices_.push_back((ours ? paths.in_directory(mark->second.file) : fresh) +
+                         " does not hold exactly the rows the checkpoint was written after (" +
+                         (ours ? "missing, changed, or written by another run since"
+                               : "the checkpoint does not record them") +
+                         "): it is left as it is, and this run's " + name + " rows from step " +
+                         std::to_string(restart_step) + " on go to " + path);
+    return std::make_unique<io::HistoryWriter>(path, table_columns, comm);
+  };
   const auto& dyn = *model.dynamics;
-  history_ = csv(paths.history, columns, restarted, double(restart_step), comm);
+  history_ = table("history", "_history.csv", columns);
   if (!dyn.fracture()) return;
   const std::vector<std::string> fragment_columns = {"time",  "fragment_id", "elements",   "mass",       "com_x",
                                                      "com_y", "com_z",       "momentum_x", "momentum_y", "momentum_z"};
-  fragments_ = csv(paths.fragments, fragment_columns, restarted, dyn.time(), comm);
-  cracks_ = csv(paths.cracks, ShellDynamics::crack_event_columns(), restarted, double(restart_step), comm);
+  fragments_ = table("fragments", "_fragments.csv", fragment_columns);
+  cracks_ = table("cracks", "_cracks.csv", ShellDynamics::crack_event_columns());
 }
 
 RunOutputs::~RunOutputs() = default;
@@ -248,7 +307,20 @@ void RunOutputs::flush_crack_log() {
 io::CheckpointData RunOutputs::checkpoint(io::CheckpointData state) const {
   state.scalars["e0"] = e0_;
   state.strings["deck"] = deck_.file;
+  state.strings["results"] = files::resolved(deck_.output.path(""));  // <directory>/<base> of the run
+  const auto mark = [&](const char* name, const std::unique_ptr<io::HistoryWriter>& table) {
+    if (!table) return;
+    const io::CsvMark m = table->mark();
+    state.scalars[bytes_key(name)] = double(m.bytes);  // exact below 2^53 bytes
+    state.strings[digest_key(name)] = m.digest;
+    state.strings[file_key(name)] = m.file;
+  };
+  mark("history", history_), mark("fragments", fragments_), mark("cracks", cracks_);
   return state;
 }
+
+std::string RunOutputs::history_path() const { return history_->path(); }
+std::string RunOutputs::fragments_path() const { return fragments_ ? fragments_->path() : std::string(); }
+std::string RunOutputs::cracks_path() const { return cracks_ ? cracks_->path() : std::string(); }
 
 }  // namespace shellfrac::solver

@@ -5,6 +5,7 @@
 /// crack log. A restarted run resumes the CSV files after its restart point.
 #include <mpi.h>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,11 +13,7 @@
 #include "shellfrac/core/types.hpp"
 #include "shellfrac/io/checkpoint.hpp"
 #include "shellfrac/io/exodus_results.hpp"
-
-namespace shellfrac::io {
-class ExodusResultsWriter;
-class HistoryWriter;
-}  // namespace shellfrac::io
+#include "shellfrac/io/history.hpp"
 
 namespace shellfrac::solver {
 
@@ -28,9 +25,30 @@ struct StepRecord;
 struct ResultPaths {
   explicit ResultPaths(const Deck& deck);
   std::string exodus, history, fragments, cracks, checkpoint;
-  /// The Exodus results of a run restarted at `step`: <base>.restart<step>.exo.
-  std::string restart_exodus(long step) const;
+  /// The run's lock file (<base>.lock): held while the run writes (core/files.hpp, RunLock).
+  std::string lock;
+  /// The result names of a run restarted at `step` that cannot continue the original files:
+  /// <base>.restart<step>.exo, <base>.restart<step>_history.csv, ...
+  ResultPaths restarted(long step) const;
+  /// <directory>/<base>: the names above are it and a suffix.
+  const std::string& prefix() const { return prefix_; }
+  /// `name` (a file name without directory) in the output directory.
+  std::string in_directory(const std::string& name) const;
+  /// Whether `name` (without directory) is this base's table `suffix` ("_history.csv"): <base><suffix> or
+  /// <base>.restart<N><suffix>.
+  bool of_this_base(const std::string& name, const std::string& suffix) const;
+
+ private:
+  std::string prefix_;          ///< <directory>/<base>
+  std::string directory_, base_;  ///< Output->Directory ("" = the current one) and Base Name
+  ResultPaths() = default;
+  void name(const std::string& prefix);
 };
+
+/// The CSV tables of a run by name ("history", "fragments", "cracks") and where each stood when a checkpoint was
+/// written (RunOutputs::checkpoint stores them; read back by table_marks).
+using TableMarks = std::map<std::string, io::CsvMark>;
+TableMarks table_marks(const io::CheckpointData& header);
 
 /// The sets written with the results (docs/output.md): the mesh's node and side sets, then the deck's regions
 /// (ids after the mesh's), on this rank's owned DG copies (a node set holds every DG copy of its mesh nodes, a
@@ -42,11 +60,16 @@ ResultsSets results_sets(const Deck& deck, const RunModel& model);
 
 class RunOutputs {
  public:
-  /// Creates the files (removing stale results of an earlier run first; a restarted run keeps its CSV rows
-  /// up to the restart point) with the sets `sets` (results_sets). `e0` is the initial energy of the balance (the
-  /// restart's, if restarted). Collective.
+  /// Creates the files (removing stale results of an earlier run first) with the sets `sets` (results_sets). `e0`
+  /// is the initial energy of the balance (the restart's, if restarted). A run restarted at `restart_step` (>= 0)
+  /// writes its Exodus frames to <base>.restart<step>.exo and continues each CSV table the checkpoint names (`marks`)
+  /// if that file is one of this base's and its rows on disk are provably those the checkpoint was written after;
+  /// otherwise the table on disk is left as it is and the run starts <base>_<table>.csv, or if that exists
+  /// <base>.restart<step>_<table>.csv, and says so (`notices`) when a table it could have continued was not
+  /// provably its own. Collective.
   RunOutputs(const Deck& deck, RunModel& model, const ResultsSets& sets, const std::vector<std::string>& probe_names,
-             const std::vector<std::vector<char>>& probe_members, long restart_step, double e0, MPI_Comm comm);
+             const std::vector<std::vector<char>>& probe_members, long restart_step, const TableMarks& marks,
+             double e0, MPI_Comm comm);
   ~RunOutputs();
 
   /// An Exodus frame of the current state, and (if `fragment_rows`, fracture runs) the fragment table. Collective.
@@ -55,11 +78,17 @@ class RunOutputs {
   void write_history();
   /// The crack log rows not yet written, if the global count of activated edges changed. Collective.
   void flush_crack_log();
-  /// `state` (ShellDynamics::checkpoint, now or earlier) with what a restart of this run needs besides the
-  /// state: the initial energy of the balance and the deck's name.
+  /// `state` (ShellDynamics::checkpoint, taken now) with what a restart of this run needs besides the state: the
+  /// initial energy of the balance, the deck's name and the marks of the CSV tables as they are now.
   io::CheckpointData checkpoint(io::CheckpointData state) const;
   /// The Exodus file (rank 0's view: the set's first file for np > 1), for the run summary.
   const std::string& exodus_path() const { return exodus_path_; }
+  /// The CSV tables' files (the fragment and crack tables are "" without fracture).
+  std::string history_path() const;
+  std::string fragments_path() const;
+  std::string cracks_path() const;
+  /// What the user must know about the files (a restart that could not continue a table), on rank 0.
+  const std::vector<std::string>& notices() const { return notices_; }
 
  private:
   /// The values of a history row of the current state (and its record, if `record`). Collective.
@@ -75,6 +104,7 @@ class RunOutputs {
   std::vector<std::vector<double>> element_constant_;  // block id and rank per owned element
   std::vector<int> nodal_written_, element_written_;   // the fields Output->Fields selects (all by default)
   GlobalId cracks_logged_ = -1;  // the count of activated edges the crack log was last written at
+  std::vector<std::string> notices_;
 };
 
 }  // namespace shellfrac::solver

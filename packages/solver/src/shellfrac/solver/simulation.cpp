@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "shellfrac/core/error.hpp"
+#include "shellfrac/core/files.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/io/checkpoint.hpp"
@@ -150,11 +151,11 @@ struct CheckpointOnDisk {
 /// The message of a blow-up that names the last good state on disk: `last_good` if the run kept a copy in memory
 /// (written now as a checkpoint), else the last checkpoint written or started from (`on_disk`; none if the run
 /// blew up before its first checkpoint).
-std::string stop_at_blow_up(const NumericalError& e, CheckpointSeries& checkpoints, const RunOutputs& out,
+std::string stop_at_blow_up(const NumericalError& e, CheckpointSeries& checkpoints,
                             const std::optional<io::CheckpointData>& last_good, const CheckpointOnDisk& on_disk) {
   CheckpointOnDisk good = on_disk;
   if (last_good) {
-    good.file = checkpoints.write(out.checkpoint(*last_good));
+    good.file = checkpoints.write(*last_good);
     good.step = long(last_good->scalars.at("step")), good.time = last_good->scalars.at("time");
   }
   std::ostringstream os;
@@ -169,6 +170,33 @@ std::string stop_at_blow_up(const NumericalError& e, CheckpointSeries& checkpoin
   return os.str();
 }
 
+/// Whether `file` is one of the checkpoints of the series <stem>_step<N>.h5.
+bool in_series(const std::string& file, const std::string& stem) {
+  const std::string f = files::resolved(file), s = files::resolved(stem) + "_step";
+  return f.compare(0, s.size(), s) == 0;
+}
+
+/// The locks of a run (core/files.hpp): its output base and, if Checkpoint->File names another series, that
+/// series. Taken on rank 0 before anything is written, released when the run ends. Collective.
+class RunLocks {
+ public:
+  RunLocks(const Deck& deck, MPI_Comm comm) {
+    parallel::on_root_then_agree(
+        [&] {
+          const ResultPaths paths(deck);
+          const std::string base = deck.output.path("");
+          locks_.push_back(std::make_unique<files::RunLock>(paths.lock, base, deck.file));
+          const std::string stem = checkpoint_stem(deck.checkpoint.file);
+          if (files::resolved(stem) != files::resolved(base + "_checkpoint"))
+            locks_.push_back(std::make_unique<files::RunLock>(stem + ".lock", deck.checkpoint.file, deck.file));
+        },
+        0, comm);
+  }
+
+ private:
+  std::vector<std::unique_ptr<files::RunLock>> locks_;
+};
+
 }  // namespace
 
 Simulation::Simulation(const std::string& deck_file, MPI_Comm comm, const std::string& restart_file,
@@ -179,7 +207,7 @@ Simulation::Simulation(const std::string& deck_file, MPI_Comm comm, const std::s
       allow_physics_change_(allow_physics_change) {
   if (!restart_file.empty()) deck_.checkpoint.restart_from = restart_file;
   model_ = build_run_model(deck_, comm);
-  fingerprint_ = RestartFingerprint::of(deck_, *model_.distributed);
+  fingerprint_ = RestartFingerprint::of(deck_, *model_.distributed, *model_.mesh);
   progress_interval_ = deck_.output.progress_interval;
   resolve_probes();
   results_sets_ = results_sets(deck_, model_);
@@ -194,18 +222,42 @@ Simulation::~Simulation() = default;
 // The checkpoint is read and checked against this deck and mesh before any output is written.
 void Simulation::restart_from_checkpoint() {
   const std::string& file = deck_.checkpoint.restart_from;
+  files::require_regular_input(file, "the checkpoint to restart from");  // a FIFO would block in open()
   auto& dyn = *model_.dynamics;
   dyn.restore(file, [&](const io::CheckpointData& header) {  // before any table is read into the state
     const auto e0 = header.scalars.find("e0");
     SHELLFRAC_INPUT_REQUIRE(e0 != header.scalars.end(), file << ": not a checkpoint of a shellfrac run (no 'e0')");
     fingerprint_.check(header, file, allow_physics_change_);
+    refuse_changed_physics_over_its_origin(header);
     restart_e0_ = e0->second;
+    restart_marks_ = table_marks(header);
   });
   SHELLFRAC_INPUT_REQUIRE(dyn.time() + 0.5 * dyn.time_step() < deck_.time.end_time,
                           deck_.file << ": 'Time Integration->End Time' = " << deck_.time.end_time
                                      << " is not after the time " << dyn.time() << " of the checkpoint " << file
                                      << " (step " << dyn.step_count() << "): nothing to run; raise End Time");
   summary_.restart_step = dyn.step_count();
+}
+
+// A restart with other physics is another run: its results and checkpoints must not continue (and so cut or
+// replace) those of the run it starts from. Known by the output base the checkpoint records, and by the checkpoint
+// series the restart file belongs to.
+void Simulation::refuse_changed_physics_over_its_origin(const io::CheckpointData& header) const {
+  const auto physics = header.strings.find("fingerprint physics");
+  if (physics == header.strings.end() || physics->second == fingerprint_.physics) return;
+  const auto results = header.strings.find("results");
+  const std::string& file = deck_.checkpoint.restart_from;
+  const bool same_results = results != header.strings.end() && results->second == files::resolved(deck_.output.path(""));
+  const bool same_series = in_series(file, checkpoint_stem(deck_.checkpoint.file));
+  SHELLFRAC_INPUT_REQUIRE(!same_results && !same_series,
+                          deck_.file << ": this restart changes the physics (--allow-physics-change) but would write "
+                                     << (same_results ? "its results under the same 'Output->Base Name' and "
+                                                        "'Output->Directory'"
+                                                      : "its checkpoints into the series '" + deck_.checkpoint.file + "'")
+                                     << " as the run that wrote " << file
+                                     << ", cutting and replacing that run's results and later checkpoints; give this "
+                                        "run another 'Output->Base Name' (or 'Output->Directory') and, if set, "
+                                        "another 'Checkpoint->File'");
 }
 
 void Simulation::resolve_probes() {
@@ -299,7 +351,11 @@ RunSummary Simulation::run() {
   const bool restarted = summary_.restart_step >= 0;
   const StepRecord r0 = dyn.record();
   const double e0 = restarted ? restart_e0_ : r0.kinetic + r0.strain + r0.penalty;
-  RunOutputs out(deck_, model_, results_sets_, probe_names_, probe_members_, summary_.restart_step, e0, comm_);
+  const RunLocks locks(deck_, comm_);  // before anything is written
+  RunOutputs out(deck_, model_, results_sets_, probe_names_, probe_members_, summary_.restart_step, restart_marks_, e0,
+                 comm_);
+  if (parallel::rank(comm_) == 0)
+    for (const auto& notice : out.notices()) std::cerr << "shellfrac: notice: " << notice << "\n";
   const auto& tp = deck_.time;
   OutputSchedule frames(tp);
   if (restarted) {
@@ -327,7 +383,13 @@ RunSummary Simulation::run() {
   // of the state kept in memory every 50 steps (as large as the state: docs/performance.md), written then.
   const bool checkpointing = deck_.checkpoint.step_interval > 0 || deck_.checkpoint.wall_minutes > 0;
   std::optional<io::CheckpointData> last_good;
-  if (!checkpointing) last_good = io::built(dyn.checkpoint());
+  // The copy carries the marks of the CSV tables as they stand at its step (the crack log completed through it).
+  const auto keep_last_good = [&] {
+    out.flush_crack_log();
+    last_good.reset();  // one copy at a time
+    last_good = io::built(out.checkpoint(dyn.checkpoint()));
+  };
+  if (!checkpointing) keep_last_good();
   // Stop when the next step would overshoot the end time by more than half a step; with Exact Output Times the
   // steps that would pass an output time or End Time are shortened to end on it.
   const bool exact = tp.exact_output_times;
@@ -339,9 +401,9 @@ RunSummary Simulation::run() {
       else
         dyn.step();
     } catch (const NumericalError& e) {
-      throw NumericalError(stop_at_blow_up(e, checkpoints, out, last_good, on_disk));
+      throw NumericalError(stop_at_blow_up(e, checkpoints, last_good, on_disk));
     }
-    if (last_good && dyn.step_count() % 50 == 0) last_good.reset(), last_good = io::built(dyn.checkpoint());  // one copy at a time
+    if (last_good && dyn.step_count() % 50 == 0) keep_last_good();
     history_written = dyn.step_count() % tp.history_interval == 0;
     if (history_written) out.write_history();
     frame_written = frames.due(dyn.time(), dyn.time_step());
@@ -366,13 +428,13 @@ RunSummary Simulation::run() {
   const int np = parallel::size(comm_);
   summary_.files = {np == 1 ? out.exodus_path()
                             : io::rank_file_name(out.exodus_path(), np, 0) + " ... (" + std::to_string(np) + " files)",
-                    history_path()};
+                    out.history_path()};
   summary_.checkpoint = checkpoints.last();
   if (!summary_.checkpoint.empty()) summary_.files.push_back(summary_.checkpoint);
   if (dyn.fracture()) {
     out.flush_crack_log();
-    summary_.files.push_back(fragments_path());
-    summary_.files.push_back(cracks_path());
+    summary_.files.push_back(out.fragments_path());
+    summary_.files.push_back(out.cracks_path());
   }
   return summary_;
 }

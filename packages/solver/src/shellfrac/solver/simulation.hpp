@@ -79,6 +79,7 @@ class Simulation {
 
  private:
   void restart_from_checkpoint();
+  void refuse_changed_physics_over_its_origin(const io::CheckpointData& header) const;
   void resolve_probes();
   void summarize();
   void check_time_step();
@@ -96,6 +97,7 @@ class Simulation {
   ResultsSets results_sets_;  ///< the sets of the Exodus results, resolved at set-up
   RunSummary summary_;
   double restart_e0_ = 0;  ///< initial energy of the restarted run (for the balance error)
+  TableMarks restart_marks_;  ///< where the CSV tables stood at the checkpoint restarted from
   double progress_interval_ = 10;  ///< seconds between progress lines (Output->Progress Interval; 0 = none)
 };
 

@@ -1,6 +1,7 @@
 #include "shellfrac/solver/state_checkpoint.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <sstream>
@@ -122,7 +123,45 @@ void StateRestore::header(const io::CheckpointData& d) {
   SHELLFRAC_INPUT_REQUIRE(GlobalId(scalar("num_elements")) == dm_.num_global_elements(),
                           file_ << ": the checkpoint has " << GlobalId(scalar("num_elements")) << " elements, the mesh "
                                 << dm_.num_global_elements());
-  s_.time = scalar("time"), s_.step = long(scalar("step"));
+  const double time = scalar("time"), step = scalar("step");
+  SHELLFRAC_INPUT_REQUIRE(step >= 0 && step <= 9.0e15 && step == std::floor(step),
+                          file_ << ": the checkpoint's step " << step << " is not a whole number >= 0: the file was "
+                                << "not written by a shellfrac run");
+  SHELLFRAC_INPUT_REQUIRE(std::isfinite(time) && time >= 0 && (time == 0) == (step == 0),
+                          file_ << ": the checkpoint's time " << time << " at step " << step << " is not finite and "
+                                << "positive after step 0 (0 at step 0): the file was not written by a shellfrac run");
+  s_.time = time, s_.step = long(step);
+}
+
+// The first value of a block that no run can have written, in words; "" if none. Every value finite; a director
+// of unit length (the exponential map keeps it so to round-off); a mode intact, cohesive or separated.
+std::string StateRestore::implausible(const std::string& name, const io::CheckpointTable& rows) const {
+  std::ostringstream os;
+  const int width = rows.width;
+  for (std::size_t k = 0; k < rows.ids.size(); ++k) {
+    const double* r = rows.values.data() + k * std::size_t(width);
+    const std::string where = (name.rfind("interface ", 0) == 0 ? "interface " : "element ") +
+                              std::to_string(rows.ids[k] + 1);
+    for (int c = 0; c < width; ++c)
+      if (!std::isfinite(r[c])) {
+        os << "its table '" << name << "' holds " << r[c] << " for " << where;
+        return os.str();
+      }
+    if (name == interface_table("mode") && r[0] != intact && r[0] != cohesive && r[0] != separated) {
+      os << "its table '" << name << "' holds the mode " << r[0] << " for " << where
+         << " (0 intact, 1 cohesive, 2 separated)";
+      return os.str();
+    }
+    if (name == element_table("t"))
+      for (int a = 0; a < width / 3; ++a) {
+        const double length = std::sqrt(r[3 * a] * r[3 * a] + r[3 * a + 1] * r[3 * a + 1] + r[3 * a + 2] * r[3 * a + 2]);
+        if (std::abs(length - 1) > 1e-6) {
+          os << "its director " << a + 1 << " of " << where << " has the length " << length << ", not 1";
+          return os.str();
+        }
+      }
+  }
+  return {};
 }
 
 void StateRestore::table(const std::string& name, const io::CheckpointTable& rows) {
@@ -132,6 +171,7 @@ void StateRestore::table(const std::string& name, const io::CheckpointTable& row
     finish_table();
     current_ = name, restored_.insert(name), seen_.assign(ids->size(), 0);
   }
+  if (invalid_.empty()) invalid_ = implausible(name, rows);  // remembered, not thrown: the read is collective
   // The row's local index: an owned element, or a local interface (both lists are sorted by global id).
   const auto local = [&](GlobalId gid) -> LocalId {
     const auto it = std::lower_bound(ids->begin(), ids->end(), gid);
@@ -180,6 +220,8 @@ void StateRestore::finish() {
   current_.clear();
   parallel::on_all_then_agree(
       [&] {
+        SHELLFRAC_INPUT_REQUIRE(invalid_.empty(), file_ << ": " << invalid_ << ": the file was not written by a "
+                                                                    "shellfrac run (its checksum only proves it unchanged)");
         SHELLFRAC_INPUT_REQUIRE(missing_.empty(), missing_);
         for (const auto& name : needed_.tables())
           SHELLFRAC_INPUT_REQUIRE(restored_.count(name), file_ << ": the checkpoint's table '" << name

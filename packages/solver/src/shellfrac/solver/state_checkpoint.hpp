@@ -41,7 +41,9 @@ class CheckpointRows {
 /// header(), then table() for each block of each table in turn (tables of no state field are ignored), then
 /// finish(). The ghosts' rows are not
 /// touched. InputError naming `file` if the checkpoint does not fit this model (another element count, a missing
-/// row or table, another width).
+/// row or table, another width) or holds values no run can have written (a step that is not a whole number >= 0, a
+/// time that is not finite and >= 0, a non-finite value, a director that is not a unit vector, an interface mode
+/// other than intact, cohesive or separated): the checksum proves the file unchanged, not its contents sound.
 class StateRestore {
  public:
   StateRestore(std::string file, const decomposition::DistributedMesh& dm, bool plastic, ShellState& s);
@@ -56,6 +58,7 @@ class StateRestore {
 
  private:
   void finish_table();
+  std::string implausible(const std::string& name, const io::CheckpointTable& rows) const;
   std::string file_;
   const decomposition::DistributedMesh& dm_;
   ShellState& s_;
@@ -64,6 +67,7 @@ class StateRestore {
   std::string current_;     ///< the table being restored
   std::vector<char> seen_;  ///< its rows restored so far
   std::string missing_;     ///< the first missing row, reported by finish()
+  std::string invalid_;     ///< the first value no run can have written, reported by finish()
 };
 
 }  // namespace shellfrac::solver
