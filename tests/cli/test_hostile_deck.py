@@ -250,6 +250,65 @@ class HostileDeck(unittest.TestCase):
         r = run([SHELLFRAC, "--check", deck], cwd=self.dir)
         self.assertEqual(r.returncode, 0, r.stderr)
 
+    def test_a_set_that_selects_nothing_is_refused_where_something_must_be_acted_on(self):
+        # A region outside the mesh, as the only set of a support, a load, an initial velocity or a probe, ran with
+        # exit 0 (the probe columns written as exact zeros).
+        region = ('<ParameterList name="Output">',
+                  '<ParameterList name="Regions"><ParameterList name="off mesh">'
+                  '<Parameter name="Shape" type="string" value="Box"/>'
+                  '<Parameter name="Min" type="Array(double)" value="{10.0, 10.0, -1.0}"/>'
+                  '<Parameter name="Max" type="Array(double)" value="{11.0, 11.0, 1.0}"/>'
+                  '</ParameterList></ParameterList>\n  <ParameterList name="Output">')
+        nothing = ("' acts on 'off mesh', which selects nothing in the mesh (rectangle(4, 1, 4, 2)): a region outside the "
+                   "mesh, an empty set, or a node set that none of its elements touch? It would act on nothing")
+        cases = [
+            ("support.xml", ('value="x_min"', 'value="off mesh"'), "boundary condition 'clamped root"),
+            ("probe.xml", ("{x_max}", "{off mesh}"), "'Output->Probes"),
+            ("kick.xml", ('<Parameter name="Velocity" type="Array(double)" value="{0.0, 0.0, 1.0}"/>',
+                          '<Parameter name="Elements" type="string" value="off mesh"/>'
+                          '<Parameter name="Velocity" type="Array(double)" value="{0.0, 0.0, 1.0}"/>'),
+             "initial condition 'kick"),
+            ("load.xml", ('<ParameterList name="Output">',
+                          '<ParameterList name="Loads"><ParameterList name="push">'
+                          '<Parameter name="Type" type="string" value="Nodal Force"/>'
+                          '<Parameter name="Node Set" type="string" value="off mesh"/>'
+                          '<Parameter name="Force" type="Array(double)" value="{0.0, 0.0, 1.0}"/>'
+                          '</ParameterList></ParameterList>\n  <ParameterList name="Output">'), "load 'push"),
+        ]
+        for name, change, what in cases:
+            deck = self.deck(name, change, region)
+            self.expect_error([deck], name + ": " + what + nothing, nps=(None,))
+            self.expect_error(["--check", deck], name + ": " + what + nothing, nps=(2,))
+
+    def test_parameters_of_another_type_are_refused(self):
+        # A Velocity on a Clamped support, a Force on a Pressure load were ignored without a word.
+        deck = self.deck("clamped.xml", ('<Parameter name="Node Set" type="string" value="x_min"/>',
+                                         '<Parameter name="Node Set" type="string" value="x_min"/>'
+                                         '<Parameter name="Velocity" type="Array(double)" value="{0.0, 0.0, 2.0}"/>'))
+        self.expect_error([deck], "clamped.xml: 'shellfrac->Boundary Conditions->clamped root->Velocity' = {0, 0, 2} "
+                                  "does not apply to a 'Clamped' boundary condition and would be ignored; the "
+                                  "parameters of a 'Clamped' boundary condition are 'Type', 'Node Set', 'Elements'. "
+                                  "Remove it, or choose the kind it belongs to")
+        load = ('<ParameterList name="Output">',
+                '<ParameterList name="Loads"><ParameterList name="blast">'
+                '<Parameter name="Pressure" type="double" value="1000.0"/>%s'
+                '</ParameterList></ParameterList>\n  <ParameterList name="Output">')
+        deck = self.deck("force.xml", (load[0], load[1] % '<Parameter name="Force" type="Array(double)" '
+                                                         'value="{0.0, 0.0, 5.0}"/>'))
+        self.expect_error([deck], "force.xml: 'shellfrac->Loads->blast->Force' = {0, 0, 5} does not apply to a "
+                                  "'Pressure' load with Function 'Constant' and would be ignored; the parameters of a "
+                                  "'Pressure' load with Function 'Constant' are 'Type', 'Elements', 'Function', "
+                                  "'Pressure'. Remove it, or choose the kind it belongs to", nps=(None,))
+        deck = self.deck("decay.xml", (load[0], load[1] % '<Parameter name="Decay Time" type="double" value="1e-3"/>'))
+        self.expect_error([deck], "decay.xml: 'shellfrac->Loads->blast->Decay Time' = 0.001 does not apply to a "
+                                  "'Pressure' load with Function 'Constant'", nps=(None,))
+        # A parameter at its default means nothing and passes (the --print-valid-parameters skeleton has them all).
+        deck = self.deck("zero.xml", ('<Parameter name="Node Set" type="string" value="x_min"/>',
+                                      '<Parameter name="Node Set" type="string" value="x_min"/>'
+                                      '<Parameter name="Velocity" type="Array(double)" value="{0.0, 0.0, 0.0}"/>'))
+        r = run([SHELLFRAC, "--check", deck], cwd=self.dir)
+        self.assertEqual(r.returncode, 0, r.stderr)
+
     def test_probes_named_twice_are_refused(self):
         deck = self.deck("probes.xml", ("{x_max}", "{x_max, x_min, x_max}"))
         self.expect_error([deck], "probes.xml: 'shellfrac->Output->Probes' names 'x_max' twice; each probe gives its "

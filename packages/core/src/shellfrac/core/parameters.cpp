@@ -229,6 +229,32 @@ std::vector<double> fixed_array(const ParameterList& pl, const std::string& name
   return std::vector<double>(v.begin(), v.end());
 }
 
+void refuse_inapplicable(const ParameterList& user, const ParameterList& valid, const std::string& kind,
+                         const std::function<bool(const std::string& name)>& applies, const Context& ctx) {
+  std::vector<std::string> used;
+  for (auto it = valid.begin(); it != valid.end(); ++it)
+    if (applies(valid.name(it))) used.push_back("'" + valid.name(it) + "'");
+  for (auto it = user.begin(); it != user.end(); ++it) {
+    const std::string& name = user.name(it);
+    if (applies(name) || !valid.isParameter(name) || valid.getEntry(name).isList()) continue;
+    if (user.entry(it).getAny() == valid.getEntry(name).getAny()) continue;  // the default: means nothing
+    std::ostringstream os;
+    os << ctx.file << ": '" << ctx.path << "->" << name << "' = ";
+    if (const auto& e = user.entry(it); e.isType<Teuchos::Array<double>>()) {
+      const auto& a = Teuchos::getValue<Teuchos::Array<double>>(e);
+      os << "{";
+      for (long i = 0; i < static_cast<long>(a.size()); ++i) os << (i ? ", " : "") << a[i];
+      os << "}";
+    } else {
+      os << value_string(e);
+    }
+    os << " does not apply to " << kind << " and would be ignored; the parameters of " << kind << " are";
+    for (std::size_t i = 0; i < used.size(); ++i) os << (i ? ", " : " ") << used[i];
+    os << ". Remove it, or choose the kind it belongs to";
+    throw InputError(os.str());
+  }
+}
+
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
   for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;

@@ -9,6 +9,7 @@
 
 #include <Teuchos_ParameterList.hpp>
 #include <Teuchos_RCP.hpp>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,13 @@ RCP<ParameterList> read_deck(const std::string& file, MPI_Comm comm = MPI_COMM_W
 /// Sublists of `valid` are only checked for existence; their owners validate them.
 /// Throws InputError naming ctx.file and ctx.path.
 void validate(ParameterList& user, const ParameterList& valid, const Context& ctx);
+
+/// After validate: InputError if `user` gives a parameter a value other than its default although the chosen kind
+/// (`kind`, e.g. "a 'Clamped' boundary condition") does not use it (`applies(name)` false): a Velocity on a Clamped
+/// condition, a Force on a Pressure load would be ignored without a word. A parameter left at its default (as in
+/// the documented skeleton of --print-valid-parameters) is not an error.
+void refuse_inapplicable(const ParameterList& user, const ParameterList& valid, const std::string& kind,
+                         const std::function<bool(const std::string& name)>& applies, const Context& ctx);
 
 /// A double parameter restricted to a range; `open_min`/`open_max` make the bound exclusive.
 RCP<const Teuchos::ParameterEntryValidator> double_range(double min, double max, bool open_min = false,

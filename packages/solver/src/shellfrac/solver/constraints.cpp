@@ -86,6 +86,11 @@ Constraints::Constraints(const std::vector<BoundaryCondition>& conditions, const
     const std::string what = "boundary condition '" + bc.name + "'";
     const auto member = sets.node_set(what, bc.node_set, true);
     const auto in_elements = sets.elements(what + " (Elements)", bc.elements);
+    {
+      auto acted_on = sets.nodes_of_elements(what, bc.elements);
+      for (std::size_t n = 0; n < acted_on.size(); ++n) acted_on[n] = acted_on[n] && member[n];
+      sets.require_some(what, bc.elements == "all" ? bc.node_set : bc.node_set + "' within '" + bc.elements, acted_on);
+    }
     for (LocalId le = 0; le < no; ++le)
       for (int A = 0; A < 6; ++A) {
         if (!member[dm.mesh_node(le, A)] || !in_elements[dm.element_gid(le)]) continue;

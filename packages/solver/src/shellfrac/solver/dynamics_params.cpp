@@ -192,6 +192,19 @@ BoundaryCondition BoundaryCondition::from_parameters(const std::string& name, Te
             : type == "Rigid Diaphragm"  ? Type::RigidDiaphragm
             : type == "Prescribed Velocity" ? Type::PrescribedVelocity
                                             : Type::PrescribedRotation;
+  params::refuse_inapplicable(pl, *valid_parameters(), "a '" + type + "' boundary condition",
+                              [&](const std::string& p) {
+                                if (p == "Type" || p == "Node Set" || p == "Elements") return true;
+                                switch (bc.type) {
+                                  case Type::Symmetry:
+                                  case Type::RigidDiaphragm: return p == "Normal";
+                                  case Type::PrescribedVelocity:
+                                    return p == "Velocity" || p == "Components" || p == "Ramp Time";
+                                  case Type::PrescribedRotation: return p == "Axis" || p == "Angle" || p == "Ramp Time";
+                                  default: return false;
+                                }
+                              },
+                              ctx);
   bc.node_set = pl.get<std::string>("Node Set");
   bc.elements = pl.get<std::string>("Elements");
   const auto vec3 = [&](const char* name) { return to_vec3(params::fixed_array(pl, name, 3, ctx)); };
@@ -316,6 +329,23 @@ Load Load::from_parameters(const std::string& name, Teuchos::ParameterList& pl, 
            : type == "Line Load"   ? Type::LineLoad
            : type == "Edge Moment" ? Type::EdgeMoment
                                    : Type::Pressure;
+  const std::string f = pl.get<std::string>("Function");
+  l.function = f == "Exponential" ? Function::Exponential : f == "Table" ? Function::Table : Function::Constant;
+  params::refuse_inapplicable(pl, *valid_parameters(), "a '" + type + "' load with Function '" + f + "'",
+                              [&](const std::string& p) {
+                                if (p == "Type" || p == "Function") return true;
+                                if (p == "Decay Time") return l.function == Function::Exponential;
+                                if (p == "Times" || p == "Values") return l.function == Function::Table;
+                                switch (l.type) {
+                                  case Type::Pressure:  // a Table gives the pressures themselves
+                                    return p == "Elements" || (p == "Pressure" && l.function != Function::Table);
+                                  case Type::Gravity: return p == "Elements" || p == "Acceleration";
+                                  case Type::NodalForce: return p == "Node Set" || p == "Force";
+                                  case Type::LineLoad: return p == "Side Set" || p == "Force Per Length" || p == "Follower";
+                                  default: return p == "Side Set" || p == "Moment Per Length";
+                                }
+                              },
+                              ctx);
   l.elements = pl.get<std::string>("Elements");
   l.node_set = pl.get<std::string>("Node Set");
   l.side_set = pl.get<std::string>("Side Set");
@@ -323,8 +353,6 @@ Load Load::from_parameters(const std::string& name, Teuchos::ParameterList& pl, 
                           ctx.file << ": '" << ctx.path << "': a Nodal Force needs a 'Node Set'");
   SHELLFRAC_INPUT_REQUIRE((l.type != Type::LineLoad && l.type != Type::EdgeMoment) || !l.side_set.empty(),
                           ctx.file << ": '" << ctx.path << "': a " << type << " needs a 'Side Set'");
-  const std::string f = pl.get<std::string>("Function");
-  l.function = f == "Exponential" ? Function::Exponential : f == "Table" ? Function::Table : Function::Constant;
   l.pressure = pl.get<double>("Pressure");
   l.decay_time = pl.get<double>("Decay Time");
   const auto times = pl.get<Teuchos::Array<double>>("Times"), values = pl.get<Teuchos::Array<double>>("Values");

@@ -69,8 +69,11 @@ void set_initial_state(const std::vector<InitialVelocity>& velocities, const Mes
   const auto& dm = model.dm;
   size_state(model, s);
   std::vector<std::vector<char>> members;
-  for (const auto& iv : velocities)
-    members.push_back(sets.nodes_of_elements("initial condition '" + iv.name + "'", iv.elements));
+  for (const auto& iv : velocities) {
+    const std::string what = "initial condition '" + iv.name + "'";
+    members.push_back(sets.nodes_of_elements(what, iv.elements));
+    sets.require_some(what, iv.elements, members.back());
+  }
   for (std::size_t k = 0; k < velocities.size(); ++k)
     for (LocalId le = 0; le < model.owned; ++le)
       for (int A = 0; A < 6; ++A) {

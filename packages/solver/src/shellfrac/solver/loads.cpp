@@ -64,6 +64,7 @@ Loads::Loads(const std::vector<Load>& loads, const MeshSets& sets, const mesh::S
       if (varying) target.assign(model.owned, 0.0);
       const auto member = load.type == T::Gravity ? sets.elements(what, load.elements)
                                                   : sets.node_set(what + " (Node Set)", load.node_set, false);
+      sets.require_some(what, load.type == T::Gravity ? load.elements : load.node_set, member);
       for (LocalId le = 0; le < model.owned; ++le)
         for (int A = 0; A < 6; ++A) {
           if (load.type == T::Gravity && !member[dm.element_gid(le)]) continue;
@@ -75,10 +76,12 @@ Loads::Loads(const std::vector<Load>& loads, const MeshSets& sets, const mesh::S
         }
     } else if (load.type == T::Pressure) {
       const auto member = sets.elements(what, load.elements);
+      sets.require_some(what, load.elements, member);
       for (LocalId le = 0; le < model.owned; ++le)
         if (member[dm.element_gid(le)]) elements_.back().push_back(le);
     } else {
       const auto edges = sets.side_set(what + " (Side Set)", load.side_set);
+      sets.require_some(what, load.side_set, edges);
       director_loads_ = director_loads_ || load.type == T::EdgeMoment;
       for (LocalId le = 0; le < model.owned; ++le)
         for (int k = 0; k < 3; ++k) {

@@ -45,6 +45,21 @@ const Region* MeshSets::region(const std::string& name) const {
   return nullptr;
 }
 
+void MeshSets::require_some(const std::string& what, const std::string& name, const std::vector<char>& member) const {
+  if (std::find(member.begin(), member.end(), 1) == member.end()) refuse_empty(what, name);
+}
+
+void MeshSets::require_some(const std::string& what, const std::string& name,
+                            const std::set<std::pair<GlobalId, int>>& edges) const {
+  if (edges.empty()) refuse_empty(what, name);
+}
+
+void MeshSets::refuse_empty(const std::string& what, const std::string& name) const {
+  SHELLFRAC_INPUT_REQUIRE(false, file_ << ": " << what << " acts on '" << name << "', which selects nothing in the "
+                                       << "mesh (" << mesh_.source << "): a region outside the mesh, an empty set, or "
+                                       << "a node set that none of its elements touch? It would act on nothing");
+}
+
 std::vector<MeshSets::RegionSize> MeshSets::region_sizes() const {
   std::vector<RegionSize> out;
   for (const auto& r : regions_) {

@@ -37,6 +37,13 @@ class MeshSets {
   /// region `name`. InputError if there is none of that name.
   std::set<std::pair<GlobalId, int>> side_set(const std::string& what, const std::string& name) const;
 
+  /// InputError unless `member` (a flag per node or element, from the calls above) or `edges` selects something:
+  /// `what` names the entry that acts on it, `name` the set (a region outside the mesh, an empty set in the file,
+  /// or a node set disjoint from the entry's elements would make the entry act on nothing, silently).
+  void require_some(const std::string& what, const std::string& name, const std::vector<char>& member) const;
+  void require_some(const std::string& what, const std::string& name,
+                    const std::set<std::pair<GlobalId, int>>& edges) const;
+
   /// Per region, in deck order: its name and how many elements, nodes and edges it holds.
   struct RegionSize {
     std::string name;
@@ -46,6 +53,7 @@ class MeshSets {
 
  private:
   const Region* region(const std::string& name) const;
+  [[noreturn]] void refuse_empty(const std::string& what, const std::string& name) const;
   const mesh::SerialMesh& mesh_;
   std::string file_;
   std::vector<Region> regions_;

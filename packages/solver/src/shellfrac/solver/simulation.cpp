@@ -265,6 +265,7 @@ void Simulation::resolve_probes() {
   summary_.regions = sets.region_sizes();
   for (const auto& name : deck_.output.probes) {
     probe_members_.push_back(sets.node_set("'Output->Probes'", name, false));
+    sets.require_some("'Output->Probes'", name, probe_members_.back());
     probe_names_.push_back(name);
   }
 }
