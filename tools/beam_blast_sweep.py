@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Initial-velocity sweep of the clamped 6061-T6 beam-blast case (paper §6.3, docs/verification.md §2).
 
 For each V0 this writes a Gmsh mesh (the Rectangle generator's 'Alternating' mesh, plus a node set

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Summarises the fracture of a shellfrac run over time: crack length, cohesive and separated edges, fragments,
 and the fragment mass distribution at a chosen output time.
 
@@ -8,18 +8,21 @@ BASE is the run's output base name (`<base>_history.csv`, `<base>_cracks.csv`, `
 Exodus results `<base>.exo` or the per-rank set `<base>.exo.<np>.<rank>`). The crack length is the length of the
 edges that have activated (a cohesive zone or a separated edge), measured on the reference mid-surface along
 each edge's quadratic curve; the Exodus results give the elements' nodes, so any mesh works (also refined ones).
-The fragment statistics leave out the largest piece (the structure the fragments come from). Writes a PNG with
+The pieces are all the connected parts of the structure, as the history's num_fragments counts them; the fragment
+statistics leave out the main piece (the one of most elements, the structure the fragments come from; in a
+shear-off that may be the flying part). Writes a PNG with
 four panels and a CSV, one row per output time, and prints the table at the chosen time (default: the last).
 Reads Exodus II through netCDF4 (Debian: python3-netcdf4).
 """
 import argparse
 import csv
-import glob
 import os
 import sys
 
 import numpy as np
 from netCDF4 import Dataset
+
+from results_files import ResultsError, rank_files
 
 
 def fail(message):
@@ -28,26 +31,40 @@ def fail(message):
 
 
 def read_csv(path, required=True):
+    """The table's columns by name. A last line without its newline is a row still being written (a running or
+    cut run): it is left out, with a note. Any other row that is not complete numbers is an error naming it."""
     if not os.path.exists(path):
         if required:
             fail("missing %s" % path)
         return None
     with open(path, newline="") as f:
-        rows = list(csv.reader(f))
-    if not rows:
+        text = f.read()
+    lines = text.split("\n")
+    if lines and lines[-1] != "":
+        sys.stderr.write("fracture_summary.py: note: %s ends in a partial line (a run still writing?): left out\n"
+                         % path)
+    lines = lines[:-1]
+    if not lines:
         fail("%s is empty" % path)
-    header, body = rows[0], rows[1:]
-    return {name: np.array([float(r[k]) for r in body]) for k, name in enumerate(header)}
+    header = next(csv.reader([lines[0]]))
+    body = []
+    for number, line in enumerate(lines[1:], start=2):
+        row = line.split(",")
+        try:
+            values = [float(v) for v in row]
+        except ValueError:
+            values = None
+        if values is None or len(values) != len(header):
+            fail("%s: line %d is not %d numbers: '%s'" % (path, number, len(header), line[:80]))
+        body.append(values)
+    return {name: np.array([r[k] for r in body]) for k, name in enumerate(header)}
 
 
 def exodus_files(base):
-    single = base + ".exo"
-    if os.path.isfile(single):
-        return [single]
-    files = sorted(glob.glob(glob.escape(single) + ".*.*"))
-    if not files:
-        fail("no Exodus results %s (nor %s.<np>.<rank>)" % (single, single))
-    return files
+    try:
+        return rank_files(base + ".exo")
+    except ResultsError as e:
+        fail(str(e))
 
 
 def element_nodes(files):
@@ -110,6 +127,8 @@ def main():
     p.add_argument("-o", "--output", help="PNG (default BASE_fracture.png)")
     p.add_argument("--csv", help="CSV (default BASE_fracture.csv)")
     a = p.parse_args()
+    if a.time is not None and not np.isfinite(a.time):
+        fail("--time %s is not a finite time" % a.time)
     base = a.base
     png = a.output or base + "_fracture.png"
     out_csv = a.csv or base + "_fracture.csv"
@@ -138,6 +157,7 @@ def main():
         h = np.argmin(np.abs(history["time"] - t))
         rows.append({
             "time": t,
+            "pieces": int(len(masses)),
             "crack_length": float(np.sum(lengths[crack_time <= t * (1 + 1e-12)])),
             "cohesive_edges": int(history["num_cohesive_edges"][h]),
             "separated_edges": int(history["num_separated_edges"][h]),
@@ -158,11 +178,12 @@ def main():
     masses, _, keep = pieces_at(fragments, t_pick, a.min_elements)
     scale = {"s": 1.0, "ms": 1e3, "us": 1e6}[a.time_unit]
     row = rows[int(np.argmin(np.abs(frame_times - t_pick)))]
-    print("t = %g %s: crack length %.4g, %d cohesive and %d separated edges, %d fragments (of >= %d elements) of "
-          "mass %.4g in all (largest %.4g; the main piece %.6g)"
+    print("t = %g %s: crack length %.4g, %d cohesive and %d separated edges, %d pieces (the history's "
+          "num_fragments): the main piece (the one of most elements) of mass %.6g and %d fragments (of >= %d "
+          "elements) of mass %.4g in all (largest %.4g)"
           % (t_pick * scale, a.time_unit, row["crack_length"], row["cohesive_edges"], row["separated_edges"],
-             row["fragments"], a.min_elements, row["fragment_mass"], row["largest_fragment_mass"],
-             row["main_piece_mass"]))
+             row["pieces"], row["main_piece_mass"], row["fragments"], a.min_elements, row["fragment_mass"],
+             row["largest_fragment_mass"]))
 
     import matplotlib
     matplotlib.use("Agg")

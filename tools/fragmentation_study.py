@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Fragmentation of an expanding ring against the theories of dynamic fragmentation (docs/fragmentation.md).
 
 A thin ring (a tube one cell long, nu = 0 so that its membrane wave speed is c = sqrt(E/rho)) is launched

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Mode III tearing of a notched 6061-T6 plate (Talamini & Radovitzky 2016 §6.2, Figs. 12-13; docs/mode3_tearing.md).
 
 Runs the decks xml/mode3_tearing_G050.xml, _G075.xml and _G100.xml (Gamma = 0.5, 0.75, 1.0 Y0 h), or reads their

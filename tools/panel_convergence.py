@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Mesh convergence of the impulsively loaded cylindrical panel (xml/cylindrical_panel.xml, paper §6.1).
 
 usage: panel_convergence.py [--out DIR] [--np N] [--levels 0 1 2]

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Plots one column of one or more shellfrac history CSVs against time, one curve per file.
 
 usage: plot_history.py H1.csv [H2.csv ...] --column centre_displ_z [--label L ...]

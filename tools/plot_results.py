@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Plots a shellfrac run: the deformed DG mesh coloured by an element field (default: owning rank) and,
 when the history has more than one row, the energy histories.
 
@@ -9,7 +9,6 @@ Reads Exodus II through netCDF4 (Debian: python3-netcdf4).
 """
 import argparse
 import csv
-import glob
 import os
 import sys
 
@@ -21,6 +20,7 @@ import numpy as np  # noqa: E402
 from matplotlib.collections import PolyCollection  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 from netCDF4 import Dataset  # noqa: E402
+from results_files import ResultsError, rank_files  # noqa: E402
 
 
 def names(ds, var):
@@ -65,9 +65,10 @@ def main():
     ap.add_argument("-o", "--output", help="PNG file (default: RESULTS with .png)")
     a = ap.parse_args()
 
-    files = [a.results] if os.path.exists(a.results) else sorted(glob.glob(a.results + ".*.*"))
-    if not files:
-        sys.exit("plot_results: no file %s or per-rank set %s.<np>.<rank>" % (a.results, a.results))
+    try:
+        files = rank_files(a.results)
+    except ResultsError as e:
+        sys.exit("plot_results: %s" % e)
     pieces = [read_piece(f, a.field, a.step) for f in files]
     tris = np.concatenate([p[0] for p in pieces])
     vals = np.concatenate([p[1] for p in pieces])

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Renders a shellfrac Exodus result (one file or a per-rank set) with ParaView, without a display.
 
 The deformed mid-surface (the reader adds `displ` to the coordinates) is coloured by an element field:
@@ -20,7 +20,6 @@ DISPLAY, and is retried when ParaView fails to connect to the X server.
 """
 import argparse
 import builtins
-import glob
 import math
 import os
 import shutil
@@ -63,6 +62,9 @@ if not os.environ.get("SHELLFRAC_RENDER_CHILD"):
 
 from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetColorTransferFunction, GetScalarBar,
                              IOSSReader, MergeBlocks, ProgrammableFilter, Render, SaveScreenshot, Show, Text)
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # pvpython may not add the script's directory
+from results_files import ResultsError, rank_files  # noqa: E402
 
 VIEWS = {  # direction from the focal point towards the camera, view-up
     "iso": ((-1.0, -1.0, 0.8), (0.0, 0.0, 1.0)),
@@ -110,13 +112,10 @@ def fail(message):
 
 def result_files(path):
     """The absolute path the reader is given (it finds the other files of a per-rank set itself)."""
-    path = os.path.abspath(path)
-    if os.path.isfile(path):
-        return path
-    ranks = sorted(glob.glob(glob.escape(path) + ".*.*"))
-    if not ranks:
-        fail("no Exodus results %s (nor a per-rank set %s.<np>.<rank>)" % (path, path))
-    return ranks[0]
+    try:
+        return os.path.abspath(rank_files(path)[0])  # a complete set: every rank file present
+    except ResultsError as e:
+        fail(str(e))
 
 
 def parse():

@@ -2,9 +2,13 @@
 # The main job: installs dependencies if missing, builds if needed, runs the default example deck on
 # 2 MPI ranks in ./results, and plots it. Usage: tools/run-example.sh [DECK.xml] [NUM_RANKS]
 set -euo pipefail
+# The deck as the caller names it (relative to the caller's directory), before moving to the repository.
+DECK=$(realpath -e "${1:-$(dirname "$0")/../xml/cantilever_plate_oscillation.xml}") || {
+  echo "run-example.sh: no deck '${1:-}'" >&2
+  exit 2
+}
 cd "$(dirname "$0")/.."
 ROOT=$(pwd)
-DECK=$(realpath "${1:-xml/cantilever_plate_oscillation.xml}")
 NP=${2:-2}
 bash tools/install-deps.sh
 bash tools/build.sh

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """The scaling study of paper §6.4 (Fig. 19) with shellfrac_bench: time per explicit step against the number of
 processors (cores = ranks x threads), weak and strong, over every (ranks x threads) layout up to --max-cores; and
 the size study: time per element-step (by phase) and memory per element against the number of elements, on one

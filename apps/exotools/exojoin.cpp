@@ -31,6 +31,14 @@ int main(int argc, char** argv) {
                 << "\n";
       return 2;
     }
+    for (const auto& f : files) {
+      std::error_code ec;
+      if (std::filesystem::equivalent(f, out, ec)) {
+        std::cerr << "shellfrac_exojoin: error: the output " << out << " is one of the files to join (" << f
+                  << "); name another output file\n";
+        return 2;
+      }
+    }
     const auto results = shellfrac::io::read_results_files(files);
     shellfrac::io::write_results(results, out);
     std::cout << "shellfrac_exojoin: joined " << files.size() << " files (" << results.element_gids.size()

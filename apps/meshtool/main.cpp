@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 #include <string>
@@ -90,6 +91,15 @@ int run(const std::vector<std::string>& args) {
   if (cmd == "info" && args.size() == 2) {
     info(meshio::read_mesh_file(args[1]));
     return 0;
+  }
+  // The output replaces a file of its name, never the input (read whole first, but a failed write would lose it).
+  if ((cmd == "convert" || cmd == "refine") && args.size() >= 3) {
+    std::error_code ec;
+    if (std::filesystem::equivalent(args[1], args[2], ec)) {
+      std::cerr << "shellfrac_meshtool: error: the output " << args[2] << " is the input mesh " << args[1]
+                << "; name another output file\n";
+      return 2;
+    }
   }
   if (cmd == "convert" && args.size() >= 3) {
     bool p2 = false;

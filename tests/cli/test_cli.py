@@ -232,6 +232,15 @@ class MeshTool(unittest.TestCase):
             r = run([MESHTOOL, "refine", src, out, "eleven"])
             self.assertEqual(r.returncode, 1)
             self.assertIn("refinement count 'eleven' must be 0..10", r.stderr)
+            # The output never replaces the input (`convert a.exo a.exo` replaced the source, exit 0).
+            with open(out, "rb") as f:
+                before = f.read()
+            for cmd in (["convert", out, out], ["refine", out, out, "1"]):
+                r = run([MESHTOOL] + cmd)
+                self.assertEqual(r.returncode, 2, r.stderr)
+                self.assertIn("the output %s is the input mesh %s; name another output file" % (out, out), r.stderr)
+            with open(out, "rb") as f:
+                self.assertEqual(f.read(), before)
         finally:
             shutil.rmtree(d, ignore_errors=True)
 

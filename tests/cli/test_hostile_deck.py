@@ -309,6 +309,32 @@ class HostileDeck(unittest.TestCase):
         r = run([SHELLFRAC, "--check", deck], cwd=self.dir)
         self.assertEqual(r.returncode, 0, r.stderr)
 
+    def test_units_that_cannot_go_together_are_reported(self):
+        # A thickness of 10 m on 1 m elements passed without a word; a modulus typed as 70e3 instead of 70e9 was
+        # noticed only through a sliver warning. Stresses above the modulus are strains above 100 % (unit-free).
+        deck = self.deck("yield.xml", ("70.0e9", "70.0e3"),
+                         ('<Parameter name="Poisson\'s Ratio" type="double" value="0.33"/>',
+                          '<Parameter name="Poisson\'s Ratio" type="double" value="0.33"/>'
+                          '<Parameter name="Cohesive Strength" type="double" value="300e6"/>'))
+        self.expect_error([deck], "yield.xml: 'shellfrac->Materials->aluminium->Cohesive Strength' = 3e+08 is not "
+                                  "below Young's Modulus = 70000 (a strain of 4285.71 at that stress; metals yield and "
+                                  "break at 1e-4 to 1e-1): are they in the same units?")
+        deck = self.deck("thick.xml", ('value="0.01"', 'value="10.0"'))
+        r = run([SHELLFRAC, "--check", deck], cwd=self.dir)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("shellfrac: warning: thick.xml: block 'strip' has the Thickness 10, 10 times its median element "
+                      "edge 1: a shell thicker than its elements are wide (the thickness in other units than the "
+                      "mesh, or a solid meshed as a shell?)", r.stderr)
+        # E 1000 times too low (MPa typed as Pa) with End Time chosen for the physics (0.1 ms): 2 steps.
+        deck = self.deck("soft.xml", ("70.0e9", "70.0e6"), ('value="2e-5"', 'value="1e-4"'))
+        r = run([SHELLFRAC, "--check", deck], cwd=self.dir)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertRegex(r.stderr, r"shellfrac: warning: soft.xml: the run takes only [2-9] steps of [0-9.e+-]+ to End "
+                                   r"Time 0.0001: a wave crosses an element only that often in the whole run \(are "
+                                   r"Young's Modulus and Density in the units of the mesh and End Time\?\)")
+        r = run([SHELLFRAC, "--check", self.deck("base.xml")], cwd=self.dir)
+        self.assertNotIn("warning", r.stderr)
+
     def test_probes_named_twice_are_refused(self):
         deck = self.deck("probes.xml", ("{x_max}", "{x_max, x_min, x_max}"))
         self.expect_error([deck], "probes.xml: 'shellfrac->Output->Probes' names 'x_max' twice; each probe gives its "

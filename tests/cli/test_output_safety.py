@@ -224,7 +224,7 @@ class OutputSafety(DeckTest):
             while not os.path.exists(exodus) or os.path.getsize(exodus) == 0:
                 time.sleep(0.01)
             ranks = [pid for pid in map(int, filter(str.isdigit, os.listdir("/proc")))
-                     if self.argv0(pid) == SHELLFRAC]
+                     if self.argv0(pid) == SHELLFRAC and self.cwd(pid) == os.path.realpath(self.dir)]
             self.assertEqual(len(ranks), np or 1)
             limit = max(os.path.getsize(self.path(f)) for f in os.listdir(self.dir)) + 200000
             resource.prlimit(ranks[-1], resource.RLIMIT_FSIZE, (limit, limit))
@@ -236,6 +236,13 @@ class OutputSafety(DeckTest):
             self.assertRegex(lines[0], r"^shellfrac: error: (rank [01]: )?base\.exo(\.2\.[01])?: step [0-9]+: "
                                        r"writing failed \(.*; disk full, quota or file removed\?\)$")
             self.assertFalse(os.path.exists(self.path("base.lock")))
+
+    @staticmethod
+    def cwd(pid):
+        try:
+            return os.readlink("/proc/%d/cwd" % pid)
+        except OSError:
+            return ""
 
     @staticmethod
     def argv0(pid):

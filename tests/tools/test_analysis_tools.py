@@ -22,7 +22,54 @@ import numpy as np
 PROJECT = sys.argv.pop(1) if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
 sys.path.insert(0, os.path.join(PROJECT, "tools"))
 import fracture_summary  # noqa: E402
+import results_files  # noqa: E402
 import scaling  # noqa: E402
+
+
+class ResultNamesAndTables(unittest.TestCase):
+    """Result names are literal, per-rank sets complete, CSV rows whole. Found on an earlier version:
+    plot_results.py 'case[a].exo' globbed (and read case a.exo's set), plot_results.py and render.py drew a set with
+    a rank file missing, fracture_summary.py crashed with a traceback on a partial last line."""
+
+    def setUp(self):
+        import tempfile
+        self.dir = tempfile.mkdtemp(prefix="shellfrac_tools_")
+
+    def tearDown(self):
+        import shutil
+        shutil.rmtree(self.dir, ignore_errors=True)
+
+    def touch(self, *names):
+        for n in names:
+            open(os.path.join(self.dir, n), "w").close()
+
+    def test_names_are_literal_and_sets_complete(self):
+        base = os.path.join(self.dir, "case[a].exo")
+        self.touch("casea.exo.2.0", "casea.exo.2.1")  # what the glob 'case[a].exo.*.*' matched
+        with self.assertRaisesRegex(results_files.ResultsError, r"no such results file"):
+            results_files.rank_files(base)
+        self.touch("case[a].exo.12.00", "case[a].exo.12.01")
+        with self.assertRaisesRegex(results_files.ResultsError, r"incomplete: .*case\[a\]\.exo\.12\.02 is missing"):
+            results_files.rank_files(base)
+        for r in range(2, 12):
+            self.touch("case[a].exo.12.%02d" % r)
+        self.assertEqual(results_files.rank_files(base), [base + ".12.%02d" % r for r in range(12)])
+        self.touch("case[a].exo.3.0")
+        with self.assertRaisesRegex(results_files.ResultsError, r"several per-rank sets are present \(np = 3, 12\)"):
+            results_files.rank_files(base)
+        self.touch("case[a].exo")
+        self.assertEqual(results_files.rank_files(base), [base])
+
+    def test_a_partial_last_line_is_left_out_and_a_damaged_row_named(self):
+        path = os.path.join(self.dir, "run_history.csv")
+        with open(path, "w") as f:
+            f.write("time,step\n0,0\n1e-6,1\n2e-6,")
+        table = fracture_summary.read_csv(path)
+        self.assertEqual(list(table["step"]), [0.0, 1.0])
+        with open(path, "w") as f:
+            f.write("time,step\n0,0\ngarbage,1\n2e-6,2\n")
+        with self.assertRaises(SystemExit):
+            fracture_summary.read_csv(path)
 
 
 class WeakAndStrongSizes(unittest.TestCase):

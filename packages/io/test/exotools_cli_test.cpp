@@ -121,5 +121,27 @@ TEST(ExoTools, JoinPerRankSet) {
   EXPECT_EQ(run(join, "exotools_log14.txt"), 2);
 }
 
+// Found on an earlier version: `exojoin base.exo base.exo.2.0` overwrote rank 0's file, and the rank files of two
+// runs (the same deck and frames, other physics) were joined with exit 0.
+TEST(ExoTools, JoinRefusesItsInputAsOutputAndFilesOfDifferentRuns) {
+  const auto whole = test::expected(6, 10);
+  const std::string base = "exotools_mixed.exo";
+  test::remove_results(base);
+  write_results(chunk(whole, 0, 4), rank_file_name(base, 2, 0));
+  write_results(chunk(whole, 4, 10), rank_file_name(base, 2, 1));
+  const std::string rank0 = slurp(rank_file_name(base, 2, 0));
+  EXPECT_EQ(run(join + " " + base + " " + rank_file_name(base, 2, 0), "exotools_log15.txt"), 2);
+  EXPECT_NE(slurp("exotools_log15.txt").find("is one of the files to join"), std::string::npos)
+      << slurp("exotools_log15.txt");
+  EXPECT_EQ(slurp(rank_file_name(base, 2, 0)), rank0);
+  auto other = whole;  // another run: the same frames, other energies
+  for (auto& row : other.global)
+    for (double& v : row) v += 1.0;
+  write_results(chunk(other, 4, 10), rank_file_name(base, 2, 1));
+  EXPECT_EQ(run(join + " " + base + " exotools_mixed_joined.exo", "exotools_log16.txt"), 2);
+  EXPECT_NE(slurp("exotools_log16.txt").find("the files were written by different runs"), std::string::npos)
+      << slurp("exotools_log16.txt");
+}
+
 }  // namespace
 }  // namespace shellfrac::io

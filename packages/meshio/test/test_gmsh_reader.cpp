@@ -242,6 +242,24 @@ TEST(GmshReaderErrors, LargestPhysicalTagClash) {
   EXPECT_EQ(ids, (std::map<std::string, int>{{"bottom", 1}, {"left", 2147483647}, {"origin", 2}}));
 }
 
+// A periodic mesh (its correspondences were ignored: the periodic boundaries became free edges, silently) and a
+// mesh partitioned by Gmsh (refused with "entity not in $Entities") are refused as unsupported. An empty $Periodic
+// section, as Gmsh writes when nothing is periodic, is read.
+TEST(GmshReaderErrors, PeriodicAndPartitionedMeshesAreUnsupported) {
+  const std::string s = read_whole(data_dir + "square_v41.msh");
+  ASSERT_NE(s.find("$Periodic\n0\n$EndPeriodic"), std::string::npos);
+  std::string periodic = s;
+  periodic.replace(periodic.find("$Periodic\n0\n"), 12, "$Periodic\n1\n1 2 1\n0\n1\n10 20\n");
+  expect_input_error(write_file("periodic.msh", periodic),
+                     {"$Periodic (periodic node correspondences) is not supported: the periodic boundaries would be "
+                      "free edges; mesh without Periodic constraints"});
+  std::string partitioned = s;
+  partitioned.replace(partitioned.find("$Nodes"), 6, "$PartitionedEntities\n2\n0\n$EndPartitionedEntities\n$Nodes");
+  expect_input_error(write_file("partitioned.msh", partitioned),
+                     {"$PartitionedEntities: the mesh was partitioned by Gmsh, which is not supported; save it "
+                      "unpartitioned (shellfrac partitions the mesh itself: Partitioning sublist)"});
+}
+
 /// Reads every prefix length in [0, data.size()) with the given stride. A prefix must give an InputError
 /// naming the file unless it ends (up to blanks) with "$EndElements" or "$EndPeriodic" (then it is a
 /// complete file). Past the $MeshFormat section, the message must say the file looks truncated.

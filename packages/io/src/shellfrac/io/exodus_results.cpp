@@ -659,6 +659,12 @@ ExodusResults merge(std::vector<ExodusResults>& parts, const std::vector<std::st
     SHELLFRAC_INPUT_REQUIRE(q.nodal_names == out.nodal_names && q.element_names == out.element_names &&
                                 q.global_names == out.global_names,
                             files[f] << differs << "variable names");
+    // Every rank of a run writes the same title and the same global values (the history at each frame): files of
+    // two runs of one deck with other physics, or restarted differently, differ there.
+    SHELLFRAC_INPUT_REQUIRE(q.title == out.title, files[f] << differs << "title ('" << q.title << "')");
+    SHELLFRAC_INPUT_REQUIRE(q.global == out.global, files[f] << differs
+                                                            << "global values (the run's history at each frame): "
+                                                               "the files were written by different runs");
   }
   // (gid, file, index in file), sorted by gid.
   struct Where {

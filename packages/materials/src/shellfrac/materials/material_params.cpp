@@ -102,6 +102,15 @@ MaterialParams MaterialParams::from_parameters(const std::string& name, Teuchos:
   m.strength_scatter = read_strength_scatter(pl, m.cohesive_strength, ctx);
   SHELLFRAC_INPUT_REQUIRE(m.cohesive_strength > 0 || m.fracture_energy == 0,
                           ctx.file << ": '" << ctx.path << "' gives a 'Fracture Energy' but no 'Cohesive Strength'");
+  // Stresses above the modulus are strains above 100 %: a modulus in other units than the stresses (70e3 typed for
+  // 70e9 Pa), never a material. Unit-free, so it holds in any consistent unit system.
+  for (const auto& [name, stress] : {std::pair<const char*, double>{"Yield Stress", m.yield_stress},
+                                     std::pair<const char*, double>{"Cohesive Strength", m.cohesive_strength}})
+    SHELLFRAC_INPUT_REQUIRE(stress < m.youngs_modulus,
+                            ctx.file << ": '" << ctx.path << "->" << name << "' = " << stress << " is not below "
+                                     << "Young's Modulus = " << m.youngs_modulus << " (a strain of "
+                                     << stress / m.youngs_modulus << " at that stress; metals yield and break at "
+                                     << "1e-4 to 1e-1): are they in the same units?");
   if (m.plastic()) {
     SHELLFRAC_INPUT_REQUIRE(has_yield && m.yield_stress > 0,
                             ctx.file << ": '" << ctx.path << "' has Model = Resultant Plasticity but no positive "

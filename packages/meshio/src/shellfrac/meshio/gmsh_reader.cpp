@@ -278,9 +278,11 @@ class Cursor {
     return v;
   }
 
-  /// Skips to just after the line "$End<name>" (sections this reader does not use).
-  void skip_section(std::string_view name) {
+  /// Skips to just after the line "$End<name>" (sections this reader does not use); returns what it skipped
+  /// before that line (the section's body).
+  std::string_view skip_section(std::string_view name) {
     const std::string end = "$End" + std::string(name);
+    const std::size_t start = pos_;
     std::size_t at = pos_;
     for (;;) {
       at = data_.find(end, at);
@@ -292,7 +294,7 @@ class Cursor {
         line_ += static_cast<std::size_t>(std::count(data_.begin() + static_cast<std::ptrdiff_t>(pos_),
                                                      data_.begin() + static_cast<std::ptrdiff_t>(after), '\n'));
         pos_ = after;
-        return;
+        return std::string_view(data_).substr(start, at - start);
       }
       at = after;
     }
@@ -670,8 +672,20 @@ RawFile parse(const std::string& path, const std::string& data) {
       SHELLFRAC_INPUT_REQUIRE(!raw.has_elements, path << ": " << in.where() << ": second $Elements section");
       raw.has_elements = true;
       raw.v41 ? read_elements_41(path, in, raw) : read_elements_22(path, in, raw);
+    } else if (name == "Periodic") {
+      // Gmsh writes an empty section (a count of 0: "0" in ASCII, zero bytes in binary) when nothing is periodic.
+      const std::string where = in.where();
+      const std::string_view body = in.skip_section(name);
+      SHELLFRAC_INPUT_REQUIRE(body.find_first_not_of(std::string_view(" \t\r\n0\0", 7)) == std::string_view::npos,
+                              path << ": " << where << ": $Periodic (periodic node correspondences) is not "
+                                   << "supported: the periodic boundaries would be free edges; mesh without "
+                                   << "Periodic constraints");
+    } else if (name == "PartitionedEntities" || name == "GhostElements") {
+      SHELLFRAC_INPUT_REQUIRE(false, path << ": " << in.where() << ": $" << name << ": the mesh was partitioned by "
+                                          << "Gmsh, which is not supported; save it unpartitioned (shellfrac "
+                                          << "partitions the mesh itself: Partitioning sublist)");
     } else {
-      // $Comments, $PartitionedEntities, $Periodic, $GhostElements, $Parametrizations, $NodeData, ...
+      // $Comments, $Parametrizations, $NodeData, $ElementData, ... carry nothing shellfrac uses
       in.skip_section(name);
     }
   }

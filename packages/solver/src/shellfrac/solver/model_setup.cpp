@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <sstream>
 
 #include "shellfrac/core/error.hpp"
@@ -61,13 +62,53 @@ std::vector<std::string> mesh_warnings(const mesh::SerialMesh& m) {
   return out;
 }
 
-std::vector<std::string> model_warnings(const Deck& deck, const RunModel& r) {
+/// Per block of the mesh, a thickness far above the block's median edge length: a shell thicker than its elements
+/// are wide by this factor is a unit slip (10 m typed for 10 mm) or a solid, not a shell.
+constexpr double thickness_per_edge_warned = 2.0;
+
+std::vector<std::string> thickness_warnings(const Deck& deck, const mesh::SerialMesh& m) {
   std::vector<std::string> out;
+  std::vector<std::vector<double>> edges(m.blocks.size());
+  for (GlobalId e = 0; e < m.num_elements(); ++e)
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& a = m.coords[m.node(e, k)];
+      const Vec3& b = m.coords[m.node(e, (k + 1) % 3)];
+      edges[std::size_t(m.element_block[e])].push_back(
+          std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2])));
+    }
+  for (std::size_t b = 0; b < m.blocks.size(); ++b) {
+    auto& l = edges[b];
+    const auto section = deck.blocks.find(m.blocks[b].name);
+    if (l.empty() || section == deck.blocks.end()) continue;
+    std::nth_element(l.begin(), l.begin() + std::ptrdiff_t(l.size() / 2), l.end());
+    const double median = l[l.size() / 2], h = section->second.thickness;
+    if (h <= thickness_per_edge_warned * median) continue;
+    std::ostringstream os;
+    os << deck.file << ": block '" << m.blocks[b].name << "' has the Thickness " << h << ", " << h / median
+       << " times its median element edge " << median << ": a shell thicker than its elements are wide (the "
+       << "thickness in other units than the mesh, or a solid meshed as a shell?)";
+    out.push_back(os.str());
+  }
+  return out;
+}
+
+/// Fewer steps than this over the whole run: the waves cross an element only a few times in the run, which for a
+/// dynamic problem means a modulus or density in other units than the mesh and End Time.
+constexpr double few_steps = 10;
+
+std::vector<std::string> model_warnings(const Deck& deck, const RunModel& r) {
+  std::vector<std::string> out = thickness_warnings(deck, *r.mesh);
   const double dt = r.dynamics->time_step(), end = deck.time.end_time;
   if (end > 0 && end <= 0.5 * dt) {  // the time loop steps while t + dt/2 < End Time
     std::ostringstream os;
     os << deck.file << ": the time step " << dt << " is more than twice 'Time Integration->End Time' = " << end
        << ", so no step is taken and only the initial state is written (are Young's Modulus and Density right?)";
+    out.push_back(os.str());
+  } else if (end > 0 && end < few_steps * dt && !deck.time.static_relaxation) {
+    std::ostringstream os;
+    os << deck.file << ": the run takes only " << std::lround(std::ceil(end / dt - 0.5)) << " steps of " << dt
+       << " to End Time " << end << ": a wave crosses an element only that often in the whole run (are Young's "
+       << "Modulus and Density in the units of the mesh and End Time?)";
     out.push_back(os.str());
   }
   return out;
