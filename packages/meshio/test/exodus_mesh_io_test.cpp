@@ -235,6 +235,30 @@ TEST(ExodusMeshIo, BadConnectivityAndShellFaceSides) {
   EXPECT_NE(msg.find("side set 1"), std::string::npos) << msg;
 }
 
+// Found on an earlier version: a file whose element id map gives one id to two elements was read, and messages
+// then named positions while the file's tools name ids. Two elements with id 7, and a node with id 0, are refused.
+TEST(ExodusMeshIo, DuplicateOrNonPositiveIdsInTheIdMapsAreRefused) {
+  const std::vector<Vec3> c = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const auto with_map = [&](const std::string& path, ex_entity_type type, std::vector<int> ids) {
+    write_raw(path, 3, c, {{1, "TRISHELL3", 3, {1, 2, 3, 1, 3, 4}}});
+    int cpu = 8, io = 8;
+    float version = 0;
+    const int exo = ex_open(path.c_str(), EX_WRITE, &cpu, &io, &version);
+    ASSERT_GE(exo, 0);
+    ASSERT_GE(ex_put_id_map(exo, type, ids.data()), 0);
+    ASSERT_EQ(ex_close(exo), 0);
+  };
+  with_map("exodus_mesh_io_elem_ids.exo", EX_ELEM_MAP, {7, 7});
+  EXPECT_EQ(input_error([] { read_exodus_mesh("exodus_mesh_io_elem_ids.exo"); }),
+            "exodus_mesh_io_elem_ids.exo: the element id 7 is given to elements 1 and 2 (positions in the file) by its "
+            "element id map; ids must be unique");
+  with_map("exodus_mesh_io_node_ids.exo", EX_NODE_MAP, {10, 20, 0, 40});
+  EXPECT_EQ(input_error([] { read_exodus_mesh("exodus_mesh_io_node_ids.exo"); }),
+            "exodus_mesh_io_node_ids.exo: node 3 has the id 0 in the file's node id map; ids must be positive");
+  with_map("exodus_mesh_io_good_ids.exo", EX_ELEM_MAP, {1001, 7});
+  EXPECT_EQ(read_exodus_mesh("exodus_mesh_io_good_ids.exo").num_elements(), 2);
+}
+
 // Fuzzing regressions (docs/hostile_input.md). Files are crafted byte by byte or patched from a written mesh.
 
 std::string read_bytes(const std::string& path) {

@@ -12,6 +12,7 @@
 #include <numeric>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "shellfrac/core/error.hpp"
@@ -385,6 +386,30 @@ mesh::SerialMesh read_exodus_impl(const std::string& path) {
 
   mesh::SerialMesh m;
   m.source = path;
+
+  // The file's element and node ids (its id maps; 1..n without them). shellfrac numbers elements and nodes by their
+  // position in the file, so two entities with one id would be two things under one name: refused.
+  for (const auto& [type, count, what] : {std::tuple<ex_entity_type, std::int64_t, const char*>{EX_ELEM_MAP, num_elem,
+                                                                                               "element"},
+                                          std::tuple<ex_entity_type, std::int64_t, const char*>{EX_NODE_MAP, num_nodes,
+                                                                                               "node"}}) {
+    std::vector<std::int64_t> ids(static_cast<std::size_t>(count));
+    if (count > 0)
+      SHELLFRAC_EXO_INPUT_CHECK(ex_get_id_map(id, type, ids.data()), path << ": cannot read the " << what << " id map");
+    std::vector<std::pair<std::int64_t, std::size_t>> sorted;
+    sorted.reserve(ids.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      SHELLFRAC_INPUT_REQUIRE(ids[i] > 0, path << ": " << what << " " << i + 1 << " has the id " << ids[i]
+                                               << " in the file's " << what << " id map; ids must be positive");
+      sorted.emplace_back(ids[i], i);
+    }
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t k = 1; k < sorted.size(); ++k)
+      SHELLFRAC_INPUT_REQUIRE(sorted[k].first != sorted[k - 1].first,
+                              path << ": the " << what << " id " << sorted[k].first << " is given to " << what << "s "
+                                   << sorted[k - 1].second + 1 << " and " << sorted[k].second + 1
+                                   << " (positions in the file) by its " << what << " id map; ids must be unique");
+  }
 
   // Coordinates.
   {
