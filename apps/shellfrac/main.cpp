@@ -5,8 +5,9 @@
 //   shellfrac --print-valid-parameters [F] documented XML skeleton of every parameter (stdout or file F)
 //   shellfrac --help | --version
 // Exit codes: 0 success, 1 input error (message names the file and parameter), 2 usage error,
-// 3 internal error (all ranks aborted), 4 stopped by SIGTERM after a checkpoint, 5 Static Relaxation not
-// reached by End Time (results written), 6 a result file could not be written (named in the message).
+// 3 numerical blow-up (one line) or internal error (all ranks aborted), 4 stopped by SIGTERM (after a checkpoint;
+// during the set-up: nothing written), 5 Static Relaxation not reached by End Time (results written), 6 a result
+// file could not be written (named in the message).
 #include <mpi.h>
 #include <sys/stat.h>
 
@@ -17,6 +18,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -27,6 +29,7 @@
 #include "shellfrac/core/files.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/solver/simulation.hpp"
+#include "shellfrac/solver/stop_signals.hpp"
 
 namespace {
 
@@ -51,9 +54,10 @@ const char* usage =
     "Run in parallel with: mpirun -np N shellfrac DECK.xml\n"
     "Input reference: docs/input_reference.xml (the output of --print-valid-parameters).\n"
     "Signals: SIGUSR1 writes a checkpoint and continues; SIGTERM writes a checkpoint and the last results, then\n"
-    "stops with exit code 4 (restart with --restart). Exit codes: 0 done, 1 input error, 2 usage error,\n"
-    "3 internal error or numerical blow-up, 4 stopped by SIGTERM after a checkpoint, 5 static equilibrium\n"
-    "(Static Relaxation) not reached by End Time, 6 a result file could not be written (disk full?).\n";
+    "stops with exit code 4 (restart with --restart); during the set-up it stops at once, nothing written.\n"
+    "Exit codes: 0 done, 1 input error, 2 usage error, 3 numerical blow-up or internal error, 4 stopped by\n"
+    "SIGTERM, 5 static equilibrium (Static Relaxation) not reached by End Time, 6 a result file could not be\n"
+    "written (disk full?).\n";
 
 /// The run's plan on rank 0: mesh, partition, time step, mass scaling, regions, then any warnings.
 void print_summary(const shellfrac::solver::Simulation& sim, const std::string& deck) {
@@ -152,7 +156,14 @@ int run(int argc, char** argv) {
     if (root) std::cerr << "shellfrac: error: no input deck given\n\n" << usage;
     return 2;
   }
-  shellfrac::solver::Simulation sim(deck, MPI_COMM_WORLD, restart, allow_physics_change);
+  std::unique_ptr<shellfrac::solver::Simulation> setup;
+  try {
+    setup = std::make_unique<shellfrac::solver::Simulation>(deck, MPI_COMM_WORLD, restart, allow_physics_change);
+  } catch (const shellfrac::solver::StoppedDuringSetUp& e) {  // on every rank at once
+    if (root) std::cout << "shellfrac: " << e.what() << std::endl;
+    return 4;
+  }
+  shellfrac::solver::Simulation& sim = *setup;
   if (quiet) sim.set_quiet();
   if (root) print_summary(sim, deck);
   if (check) {

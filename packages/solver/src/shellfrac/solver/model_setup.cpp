@@ -15,6 +15,7 @@
 #include "shellfrac/mesh/serial_mesh.hpp"
 #include "shellfrac/solver/deck.hpp"
 #include "shellfrac/solver/shell_dynamics.hpp"
+#include "shellfrac/solver/stop_signals.hpp"
 
 namespace shellfrac::solver {
 
@@ -120,10 +121,14 @@ RunModel build_run_model(const Deck& deck, MPI_Comm comm) {
   RunModel r;
   auto last = std::chrono::steady_clock::now();
   std::vector<double> seconds;
+  // The end of each phase of the set-up: its time, and a prompt stop if SIGTERM came (nothing is written yet).
   const auto lap = [&] {
     const auto now = std::chrono::steady_clock::now();
     seconds.push_back(std::chrono::duration<double>(now - last).count());
     last = now;
+    static const char* const phases[] = {"reading the mesh", "the edge topology", "the partition",
+                                         "the distribution", "the model"};
+    stop_if_terminated(phases[std::min<std::size_t>(seconds.size(), 5) - 1], comm);
   };
   r.mesh = std::make_unique<mesh::SerialMesh>(build_mesh(deck.mesh, comm));
   check_deck_against_mesh(deck, *r.mesh);

@@ -21,34 +21,9 @@
 #include "shellfrac/solver/run_outputs.hpp"
 #include "shellfrac/solver/shell_dynamics.hpp"
 #include "shellfrac/solver/shell_model.hpp"
+#include "shellfrac/solver/stop_signals.hpp"
 
 namespace shellfrac::solver {
-
-namespace {
-
-/// Signal number received (SIGTERM / SIGUSR1), polled once per step by every rank.
-volatile std::sig_atomic_t received_signal = 0;
-extern "C" void on_signal(int sig) { received_signal = sig; }
-
-}  // namespace
-
-void catch_stop_signals() { std::signal(SIGTERM, on_signal), std::signal(SIGUSR1, on_signal); }
-
-/// Installs the SIGTERM and SIGUSR1 handlers for its lifetime: a Simulation's whole life, set-up included (a
-/// signal during set-up is acted on after the first step). A signal caught since catch_stop_signals() counts.
-class SignalGuard {
- public:
-  SignalGuard() : old_term_(std::signal(SIGTERM, on_signal)), old_usr1_(std::signal(SIGUSR1, on_signal)) {
-    if (old_term_ != on_signal) received_signal = 0;
-  }
-  ~SignalGuard() { std::signal(SIGTERM, old_term_), std::signal(SIGUSR1, old_usr1_); }
-  SignalGuard(const SignalGuard&) = delete;
-  SignalGuard& operator=(const SignalGuard&) = delete;
-
- private:
-  void (*old_term_)(int);
-  void (*old_usr1_)(int);
-};
 
 namespace {
 
@@ -101,14 +76,14 @@ class StepEvents {
     const auto now = std::chrono::steady_clock::now();
     const bool wall_due =
         params_.wall_minutes > 0 && std::chrono::duration<double>(now - last_).count() >= 60 * params_.wall_minutes;
-    int mine[3] = {static_cast<int>(received_signal), wall_due ? 1 : 0, progress_.due() ? 1 : 0}, all[3];
+    int mine[3] = {received_stop_signal(), wall_due ? 1 : 0, progress_.due() ? 1 : 0}, all[3];
     SHELLFRAC_REQUIRE(MPI_Allreduce(mine, all, 3, MPI_INT, MPI_MAX, comm_) == MPI_SUCCESS,
                       "MPI_Allreduce of the step events failed");
     const int signal = all[0];
     Due due{CheckpointAction::none, all[2] != 0};
     if (!((params_.step_interval > 0 && step % params_.step_interval == 0) || signal != 0 || all[1] != 0)) return due;
     last_ = now;
-    if (signal == SIGUSR1) received_signal = 0;
+    if (signal == SIGUSR1) clear_checkpoint_signal();
     due.checkpoint = signal == SIGTERM ? CheckpointAction::write_and_stop : CheckpointAction::write;
     return due;
   }
@@ -206,6 +181,7 @@ Simulation::Simulation(const std::string& deck_file, MPI_Comm comm, const std::s
       deck_(Deck::read(deck_file, comm)),
       allow_physics_change_(allow_physics_change) {
   if (!restart_file.empty()) deck_.checkpoint.restart_from = restart_file;
+  stop_if_terminated("reading the deck", comm);
   model_ = build_run_model(deck_, comm);
   fingerprint_ = RestartFingerprint::of(deck_, *model_.distributed, *model_.mesh);
   progress_interval_ = deck_.output.progress_interval;
@@ -215,6 +191,7 @@ Simulation::Simulation(const std::string& deck_file, MPI_Comm comm, const std::s
   model_.release_global_mesh();  // from here on a rank holds only its part of the mesh
   if (!deck_.checkpoint.restart_from.empty()) restart_from_checkpoint();
   check_time_step();
+  stop_if_terminated("the set-up", comm);
 }
 
 Simulation::~Simulation() = default;

@@ -45,12 +45,9 @@ struct RunSummary {
 
 class SignalGuard;
 
-/// Catches SIGTERM and SIGUSR1 from now on (a program's first call): a signal before a Simulation exists is
-/// acted on after its first step, like one during its set-up.
-void catch_stop_signals();
-
 /// A run. Construction does all the input work (collective); run() writes the outputs. SIGTERM and SIGUSR1
-/// are caught from the start of construction to the end of the run.
+/// are caught from the start of construction to the end of the run (stop_signals.hpp): SIGTERM during the
+/// construction stops it at the next phase (StoppedDuringSetUp), nothing written.
 class Simulation {
  public:
   /// `restart_file` (if not empty) overrides the deck's Checkpoint->Restart From. The checkpoint must have been
