@@ -136,14 +136,18 @@ class OutputSafety(DeckTest):
         self.assertFalse(os.path.lexists(self.path("base_checkpoint_step100.h5.tmp")))
         self.assertFalse(os.path.islink(self.path("base_checkpoint_step1200.h5")))
 
-    def test_an_exodus_result_that_is_a_link_is_replaced_by_a_file_of_its_own(self):
-        # Stale results are removed before a run writes its own: a link is removed itself, never its target.
+    def test_an_exodus_result_that_is_a_link_is_refused_too(self):
+        # Every result name that is a link is refused the same way, the Exodus file and the files of a per-rank set
+        # included (a link is neither followed nor silently removed: it may be the user's, pointing elsewhere).
         self.deck()
-        os.symlink(self.victim, self.path("base.exo"))
-        r = run(["base.xml"], self.dir)
-        self.assertEqual(r.returncode, 0, r.stderr)
-        self.assertFalse(os.path.islink(self.path("base.exo")))
-        self.assert_victim_intact()
+        for result, np in (("base.exo", None), ("base.exo.2.1", 2)):
+            os.symlink(self.victim, self.path(result))
+            r = run(["base.xml"], self.dir, np=np)
+            self.assertEqual(r.returncode, 6, r.stderr)
+            self.assertIn(result + ": a result file of this name is a symbolic link", r.stderr)
+            self.assertTrue(os.path.islink(self.path(result)))
+            self.assert_victim_intact()
+            os.remove(self.path(result))
 
     def test_a_base_name_with_a_directory_part_is_refused(self):
         # Base Name ../../x wrote two levels above the output directory.

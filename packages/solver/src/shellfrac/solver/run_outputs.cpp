@@ -38,18 +38,22 @@ std::vector<std::string> info_records(const Teuchos::ParameterList& deck, const 
   return lines;
 }
 
-/// Removes `path` and the files of any per-rank set `path.<n>.<r>` (links themselves, never what they point to;
-/// anything else of such a name is an OutputError: core/files.hpp).
+/// Removes `path` and the files of any per-rank set `path.<n>.<r>`; a link or anything but a regular file of such a
+/// name is an OutputError (core/files.hpp), as for every result.
 void remove_stale_results(const std::string& path) {
   namespace fs = std::filesystem;
   const fs::path p(path);
   const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
   const std::regex set_file(std::regex_replace(p.filename().string(), std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
                             R"(\.[0-9]+\.[0-9]+)");
-  files::remove_result(path);
+  const auto remove = [](const std::string& file) {
+    files::require_result_path(file);
+    files::remove_result(file);
+  };
+  remove(path);
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir, ec))
-    if (std::regex_match(entry.path().filename().string(), set_file)) files::remove_result(entry.path().string());
+    if (std::regex_match(entry.path().filename().string(), set_file)) remove(entry.path().string());
 }
 
 }  // namespace
