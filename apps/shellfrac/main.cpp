@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -206,6 +207,16 @@ int main(int argc, char** argv) {
   int code = 2;
   if (const auto bad = shellfrac::app::kokkos_option_error({argv + 1, argv + argc}); !bad.empty()) {
     if (shellfrac::parallel::rank() == 0) std::cerr << "shellfrac: error: " << bad << "\n\n" << usage;
+  } else if (std::any_of(argv + 1, argv + argc, [](const char* a) { return !std::strcmp(a, "--help") || !std::strcmp(a, "-h"); })) {
+    // shellfrac's own usage first, then Kokkos' options under a heading (Kokkos would print its own first).
+    const bool root = shellfrac::parallel::rank() == 0;
+    if (root) std::cout << usage << "\nKokkos options (shellfrac accepts them too):\n" << std::flush;
+    char kokkos_help[] = "--kokkos-help";
+    char* help_argv[] = {argv[0], kokkos_help, nullptr};
+    int help_argc = root ? 2 : 1;
+    char** help_args = help_argv;
+    Tpetra::ScopeGuard scope(&help_argc, &help_args);
+    code = 0;
   } else {
     Tpetra::ScopeGuard scope(&argc, &argv);
     code = shellfrac::run_guarded("shellfrac", [&] { return run(argc, argv); });

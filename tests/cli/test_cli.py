@@ -47,6 +47,11 @@ class Shellfrac(unittest.TestCase):
         r = run([SHELLFRAC, "--help"])
         self.assertEqual(r.returncode, 0)
         self.assertIn("usage: shellfrac", r.stdout)
+        # shellfrac's own usage first, Kokkos' options after a heading (Kokkos printed its own first, issue #31).
+        self.assertTrue(r.stdout.startswith("usage: shellfrac"), r.stdout[:200])
+        kokkos = r.stdout.index("Kokkos options (shellfrac accepts them too):")
+        self.assertIn("--kokkos-threads", r.stdout[kokkos:])
+        self.assertNotIn("Kokkos command line arguments", r.stdout[:kokkos])
         r = run([SHELLFRAC])
         self.assertEqual(r.returncode, 2)
         self.assertIn("no input deck given", r.stderr)
