@@ -38,22 +38,24 @@ std::vector<std::string> info_records(const Teuchos::ParameterList& deck, const 
   return lines;
 }
 
-/// Removes `path` and the files of any per-rank set `path.<n>.<r>`; a link or anything but a regular file of such a
-/// name is an OutputError (core/files.hpp), as for every result.
+/// Removes the result `file` of an earlier run; a link or anything but a regular file of that name is an
+/// OutputError (core/files.hpp), as for every result.
+void remove_stale_result(const std::string& file) {
+  files::require_result_path(file);
+  files::remove_result(file);
+}
+
+/// Removes `path` and the files of any per-rank set `path.<n>.<r>` (remove_stale_result).
 void remove_stale_results(const std::string& path) {
   namespace fs = std::filesystem;
   const fs::path p(path);
   const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
   const std::regex set_file(std::regex_replace(p.filename().string(), std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
                             R"(\.[0-9]+\.[0-9]+)");
-  const auto remove = [](const std::string& file) {
-    files::require_result_path(file);
-    files::remove_result(file);
-  };
-  remove(path);
+  remove_stale_result(path);
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir, ec))
-    if (std::regex_match(entry.path().filename().string(), set_file)) remove(entry.path().string());
+    if (std::regex_match(entry.path().filename().string(), set_file)) remove_stale_result(entry.path().string());
 }
 
 }  // namespace
@@ -213,8 +215,8 @@ RunOutputs::RunOutputs(const Deck& deck, RunModel& model, const ResultsSets& set
       [&] {
         remove_stale_results(exodus_path_);
         if (!restarted) {  // fragment and crack tables of an earlier run would mislead
-          files::remove_result(paths.fragments);
-          files::remove_result(paths.cracks);
+          remove_stale_result(paths.fragments);
+          remove_stale_result(paths.cracks);
         }
       },
       0, comm);
