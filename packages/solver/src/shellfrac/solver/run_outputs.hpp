@@ -2,7 +2,8 @@
 /// \file run_outputs.hpp
 /// The result files of a run (docs/output.md): DG Exodus frames (one file, or a per-rank set for np > 1; a
 /// restarted run opens <base>.restart<step>.exo), the history CSV, and with fracture the fragment table and the
-/// crack log. A restarted run resumes the CSV files after its restart point.
+/// crack log. A restarted run continues a CSV table only where the rows on disk are provably those its checkpoint
+/// was written after (TableMarks), else it starts a table of its own (docs/output.md, "Checkpoints and restart").
 #include <mpi.h>
 
 #include <map>
