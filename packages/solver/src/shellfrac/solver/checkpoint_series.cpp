@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "shellfrac/core/files.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/solver/deck.hpp"
 
@@ -28,7 +29,7 @@ bool CheckpointSeries::is_restart_file(const std::string& p) const {
   if (restart_file_.empty()) return false;
   std::error_code ec;
   if (std::filesystem::equivalent(p, restart_file_, ec)) return true;
-  return std::filesystem::weakly_canonical(p, ec) == std::filesystem::weakly_canonical(restart_file_, ec);
+  return files::resolved(p) == files::resolved(restart_file_);
 }
 
 std::string CheckpointSeries::write(io::CheckpointData state) {
