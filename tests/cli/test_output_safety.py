@@ -331,7 +331,8 @@ class OutputSafety(DeckTest):
         self.deck()
         r = run(["base.xml"], self.dir)
         self.assertEqual(r.returncode, 0, r.stderr)
-        original = open(self.path("base_history.csv")).read()
+        with open(self.path("base_history.csv")) as f:
+            original = f.read()
         # Another run on the same base, without checkpoints, replaces the history.
         self.deck(("70.0e9", "60e9"), ('<Parameter name="Step Interval" type="int" value="100"/>', ''),
                   ('<Parameter name="Probes"', '<Parameter name="Base Name" type="string" value="base"/>'
