@@ -24,9 +24,9 @@
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
-#include "shellfrac/solver/deck.hpp"
-#include "shellfrac/solver/model_setup.hpp"
-#include "shellfrac/solver/shell_dynamics.hpp"
+#include "shellfrac/solver/dynamics/shell_dynamics.hpp"
+#include "shellfrac/solver/input/deck.hpp"
+#include "shellfrac/solver/setup/model_setup.hpp"
 
 namespace {
 

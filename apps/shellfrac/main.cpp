@@ -29,8 +29,8 @@
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/files.hpp"
 #include "shellfrac/core/parallel.hpp"
+#include "shellfrac/solver/setup/stop_signals.hpp"
 #include "shellfrac/solver/simulation.hpp"
-#include "shellfrac/solver/stop_signals.hpp"
 
 namespace {
 

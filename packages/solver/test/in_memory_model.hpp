@@ -5,8 +5,8 @@
 #include <string>
 
 #include "shellfrac/core/error.hpp"
-#include "shellfrac/solver/deck.hpp"
-#include "shellfrac/solver/model_setup.hpp"
+#include "shellfrac/solver/input/deck.hpp"
+#include "shellfrac/solver/setup/model_setup.hpp"
 
 namespace shellfrac::test {
 

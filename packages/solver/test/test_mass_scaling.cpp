@@ -19,12 +19,12 @@
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/mesh/generators.hpp"
 #include "shellfrac/meshio/exodus_mesh_io.hpp"
-#include "shellfrac/solver/deck.hpp"
-#include "shellfrac/solver/energy_accounts.hpp"
-#include "shellfrac/solver/model_setup.hpp"
-#include "shellfrac/solver/shell_dynamics.hpp"
-#include "shellfrac/solver/shell_model.hpp"
-#include "shellfrac/solver/shell_state.hpp"
+#include "shellfrac/solver/dynamics/shell_dynamics.hpp"
+#include "shellfrac/solver/input/deck.hpp"
+#include "shellfrac/solver/model/shell_model.hpp"
+#include "shellfrac/solver/model/shell_state.hpp"
+#include "shellfrac/solver/setup/model_setup.hpp"
+#include "shellfrac/solver/step/energy_accounts.hpp"
 
 using namespace shellfrac;
 using namespace shellfrac::test;

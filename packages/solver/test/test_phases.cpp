@@ -17,11 +17,11 @@
 #include "in_memory_model.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
-#include "shellfrac/solver/deck.hpp"
-#include "shellfrac/solver/model_setup.hpp"
-#include "shellfrac/solver/shell_dynamics.hpp"
-#include "shellfrac/solver/shell_model.hpp"
-#include "shellfrac/solver/shell_state.hpp"
+#include "shellfrac/solver/dynamics/shell_dynamics.hpp"
+#include "shellfrac/solver/input/deck.hpp"
+#include "shellfrac/solver/model/shell_model.hpp"
+#include "shellfrac/solver/model/shell_state.hpp"
+#include "shellfrac/solver/setup/model_setup.hpp"
 
 using namespace shellfrac;
 using namespace shellfrac::test;

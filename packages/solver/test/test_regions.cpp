@@ -1,4 +1,4 @@
-// Sets by region (the deck's Regions sublist, docs/input_reference.xml; solver/regions.hpp, solver/mesh_sets.hpp).
+// Sets by region (the deck's Regions sublist, docs/input_reference.xml; solver/input/regions.hpp, solver/input/mesh_sets.hpp).
 // Exact counts on structured meshes whose region boundaries lie between node lines, so that each count follows
 // from the grid alone:
 //  * a Cylinder Sector on a closed cylinder (R = 1, L = 4, 8 x 32 cells, cells 0.5 x 11.25 degrees) covering
@@ -19,12 +19,12 @@
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
-#include "shellfrac/solver/deck.hpp"
-#include "shellfrac/solver/mesh_sets.hpp"
-#include "shellfrac/solver/model_setup.hpp"
-#include "shellfrac/solver/shell_dynamics.hpp"
-#include "shellfrac/solver/shell_model.hpp"
-#include "shellfrac/solver/shell_state.hpp"
+#include "shellfrac/solver/dynamics/shell_dynamics.hpp"
+#include "shellfrac/solver/input/deck.hpp"
+#include "shellfrac/solver/input/mesh_sets.hpp"
+#include "shellfrac/solver/model/shell_model.hpp"
+#include "shellfrac/solver/model/shell_state.hpp"
+#include "shellfrac/solver/setup/model_setup.hpp"
 
 using namespace shellfrac;
 using namespace shellfrac::test;

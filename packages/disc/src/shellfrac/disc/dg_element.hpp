@@ -21,13 +21,13 @@
 /// parameter s runs from the first to the second vertex. Edge point g sits at s = edge3_rule.s[g].
 #include <Kokkos_Macros.hpp>
 
+#include "shellfrac/core/triangle_basis.hpp"
 #include "shellfrac/core/types.hpp"
 #include "shellfrac/disc/element_geometry.hpp"
 #include "shellfrac/disc/quadrature.hpp"
 #include "shellfrac/disc/shell_strains.hpp"
 #include "shellfrac/disc/small_tensor.hpp"
 #include "shellfrac/disc/stress_power.hpp"
-#include "shellfrac/core/triangle_basis.hpp"
 
 namespace shellfrac::disc {
 
@@ -44,6 +44,13 @@ KOKKOS_INLINE_FUNCTION void edge_shape_p2(double s, double n[3]) {
   n[0] = (1 - s) * (1 - 2 * s);
   n[1] = s * (2 * s - 1);
   n[2] = 4 * s * (1 - s);
+}
+
+/// d/ds of the quadratic edge shape values (edge_shape_p2), edge-local order (vertex, vertex, mid-side).
+KOKKOS_INLINE_FUNCTION void edge_shape_p2_derivative(double s, double dn[3]) {
+  dn[0] = 4 * s - 3;
+  dn[1] = 4 * s - 1;
+  dn[2] = 4 - 8 * s;
 }
 
 /// Shape values at an edge point seen from two sides: quadratic (positions) and linear (directors), in each

@@ -15,13 +15,13 @@
 #include "shellfrac/io/checkpoint.hpp"
 #include "shellfrac/io/exodus_results.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
-#include "shellfrac/solver/checkpoint_series.hpp"
-#include "shellfrac/solver/mesh_sets.hpp"
-#include "shellfrac/solver/progress.hpp"
-#include "shellfrac/solver/run_outputs.hpp"
-#include "shellfrac/solver/shell_dynamics.hpp"
-#include "shellfrac/solver/shell_model.hpp"
-#include "shellfrac/solver/stop_signals.hpp"
+#include "shellfrac/solver/dynamics/shell_dynamics.hpp"
+#include "shellfrac/solver/input/mesh_sets.hpp"
+#include "shellfrac/solver/model/shell_model.hpp"
+#include "shellfrac/solver/outputs/progress.hpp"
+#include "shellfrac/solver/outputs/run_outputs.hpp"
+#include "shellfrac/solver/restart/checkpoint_series.hpp"
+#include "shellfrac/solver/setup/stop_signals.hpp"
 
 namespace shellfrac::solver {
 

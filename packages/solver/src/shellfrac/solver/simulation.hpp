@@ -11,12 +11,12 @@
 
 #include "shellfrac/core/types.hpp"
 #include "shellfrac/materials/cohesive_strength.hpp"
-#include "shellfrac/solver/deck.hpp"
-#include "shellfrac/solver/mass_scaling.hpp"
-#include "shellfrac/solver/mesh_sets.hpp"
-#include "shellfrac/solver/model_setup.hpp"
-#include "shellfrac/solver/restart_fingerprint.hpp"
-#include "shellfrac/solver/run_outputs.hpp"
+#include "shellfrac/solver/input/deck.hpp"
+#include "shellfrac/solver/input/mesh_sets.hpp"
+#include "shellfrac/solver/model/mass_scaling.hpp"
+#include "shellfrac/solver/outputs/run_outputs.hpp"
+#include "shellfrac/solver/restart/restart_fingerprint.hpp"
+#include "shellfrac/solver/setup/model_setup.hpp"
 
 namespace shellfrac::solver {
 

@@ -1,0 +1,26 @@
+#include "shellfrac/solver/model/element_strains.hpp"
+
+#include "shellfrac/solver/model/element_inputs.hpp"
+#include "shellfrac/solver/model/shell_model.hpp"
+
+namespace shellfrac::solver {
+
+void element_strains(const ShellModel& model, const ShellState& s, LocalId le,
+                     PointStrains out[disc::num_area_points]) {
+  constexpr int nq = disc::num_area_points;
+  double xe[6][3], te[3][3], xn[3][3][3] = {}, tn[3][2][3] = {};
+  bool lf[3];
+  element_inputs(NeighborViews(model.dm), kernel_view(s.x), kernel_view(s.t), model.lifted[le], le, xe, te, lf, xn, tn);
+  disc::ShellKinematics kin[nq];
+  const disc::DgElementRef& R = model.element_refs[le];
+  disc::dg_kinematics(R, xe, te, lf, xn, tn, kin);
+  double eps[nq][3], gam[nq][2], rho[nq][3];
+  disc::dg_strains(R, kin, eps, gam, rho);
+  for (int q = 0; q < nq; ++q) {
+    out[q].weight = R.wj0[q];
+    for (int c = 0; c < 3; ++c) out[q].eps[c] = eps[q][c], out[q].rho[c] = rho[q][c];
+    for (int c = 0; c < 2; ++c) out[q].gam[c] = gam[q][c];
+  }
+}
+
+}  // namespace shellfrac::solver

@@ -1,0 +1,455 @@
+#include "shellfrac/solver/step/central_difference.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include "shellfrac/core/error.hpp"
+#include "shellfrac/core/exact_sum.hpp"
+#include "shellfrac/core/parallel.hpp"
+#include "shellfrac/decomposition/distributed_mesh.hpp"
+#include "shellfrac/disc/director.hpp"
+#include "shellfrac/solver/fracture/fracture.hpp"
+#include "shellfrac/solver/model/kernel_views.hpp"
+#include "shellfrac/solver/model/shell_model.hpp"
+#include "shellfrac/solver/step/constraints.hpp"
+#include "shellfrac/solver/step/force_assembly.hpp"
+#include "shellfrac/solver/step/loads.hpp"
+
+namespace shellfrac::solver {
+
+namespace {
+
+using Motion = Constraints::Motion;
+
+/// The constraints of the owned nodes as views of Constraints' arrays, with the velocity programs of the
+/// conditions evaluated at one time: program(bc * 3 + c) (a displacement, velocity or acceleration).
+struct ConstraintViews {
+  KernelView<const Motion> motion;
+  KernelView<const unsigned char> components;
+  KernelView<const int> prescribing, plane_offset, director_holder, director_offset;
+  KernelView<const Plane> planes;
+  KernelView<const DirectorConstraint> director_constraints;
+  KernelView<const double> program;
+  ConstraintViews(const Constraints& c, const std::vector<double>& programs)
+      : motion(kernel_view(c.motions())),
+        components(kernel_view(c.prescribed_components())),
+        prescribing(kernel_view(c.prescribings())),
+        plane_offset(kernel_view(c.position_planes().offsets())),
+        director_holder(kernel_view(c.director_holders())),
+        director_offset(kernel_view(c.director_constraints().offsets())),
+        planes(kernel_view(c.position_planes().planes())),
+        director_constraints(kernel_view(c.director_constraints().constraints())),
+        program(kernel_view(programs)) {}
+  /// Whether component c of position node i follows its velocity program.
+  KOKKOS_INLINE_FUNCTION bool prescribed(LocalId i, int c) const { return (components(i) >> c) & 1; }
+  /// Component c of the program of the condition that prescribes node i.
+  KOKKOS_INLINE_FUNCTION double program_of(LocalId i, int c) const { return program(prescribing(i) * 3 + c); }
+  KOKKOS_INLINE_FUNCTION void remove_plane_normals(LocalId i, double w[3]) const {
+    solver::remove_plane_normals(planes.data() + plane_offset(i), planes.data() + plane_offset(i + 1), w);
+  }
+  KOKKOS_INLINE_FUNCTION bool director_held(LocalId j) const { return director_holder(j) >= 0; }
+  KOKKOS_INLINE_FUNCTION void remove_forbidden(LocalId j, const double L[3][3], const double t[3], double w[2]) const {
+    if (director_offset(j) == director_offset(j + 1)) return;
+    remove_forbidden_director_components(director_constraints.data() + director_offset(j),
+                                         director_constraints.data() + director_offset(j + 1), L, t, w);
+  }
+};
+
+/// Accelerations of owned element le at time t from the current forces (paper eq. 49): a = (f_ext - f - alpha m v)/m
+/// on free components, the program's acceleration on prescribed ones, 0 on held nodes, without the components
+/// normal to symmetry planes; T-ddot = -(Lambda-bar^T g + alpha I T-dot)/I on free directors. `rate` is the
+/// director rate in the damping force (the predicted one in a step). Also the reactions R = m a - f_ext + f on held
+/// and prescribed components, and the damping dissipated over dt.
+struct Accelerate {
+  ConstraintViews con;  // programs: the accelerations at t
+  KernelView<const double> v, f, fe, m, g, ge, rotation, director, inertia, rate;
+  KernelView<double> a, reaction, director_acceleration, damping;
+  double alpha, dt;
+  bool director_loads;
+
+  KOKKOS_INLINE_FUNCTION void operator()(LocalId le) const {
+    double diss = 0;
+    for (int A = 0; A < position_nodes; ++A) {
+      const LocalId i = le * position_nodes + A;
+      double* acc = &a(i * 3);
+      double* R = &reaction(i * 3);
+      const double *vi = &v(i * 3), *fi = &f(i * 3), *fei = &fe(i * 3);
+      const double mi = m(i);
+      const Motion motion = con.motion(i);
+      if (motion == Motion::held) {
+        for (int c = 0; c < 3; ++c) acc[c] = 0, R[c] = mi * acc[c] - fei[c] + fi[c];
+        continue;
+      }
+      if (motion == Motion::prescribed) {
+        for (int c = 0; c < 3; ++c) {
+          if (con.prescribed(i, c)) {
+            acc[c] = con.program_of(i, c), R[c] = mi * acc[c] - fei[c] + fi[c];
+          } else {
+            diss += dt * alpha * mi * vi[c] * vi[c];
+            acc[c] = (fei[c] - fi[c] - alpha * mi * vi[c]) / mi, R[c] = 0.0;
+          }
+        }
+        continue;
+      }
+      for (int c = 0; c < 3; ++c) {
+        diss += dt * alpha * mi * vi[c] * vi[c];
+        acc[c] = (fei[c] - fi[c] - alpha * mi * vi[c]) / mi, R[c] = 0.0;
+      }
+      if (motion == Motion::on_planes) con.remove_plane_normals(i, acc);
+    }
+    for (int b = 0; b < director_nodes; ++b) {
+      const LocalId j = le * director_nodes + b;
+      double L[3][3], fT[2];
+      load_matrix(&rotation(j * 9), L);
+      if (director_loads) {  // f_T = Lambda-bar^T (g - g_ext)
+        double gj[3];
+        for (int c = 0; c < 3; ++c) gj[c] = g(j * 3 + c) - ge(j * 3 + c);
+        disc::lambda_bar_transpose_times(L, gj, fT);
+      } else {
+        disc::lambda_bar_transpose_times(L, &g(j * 3), fT);
+      }
+      const double I = inertia(j);
+      const double* Tp = &rate(j * 2);
+      for (int c = 0; c < 2; ++c) {
+        diss += dt * alpha * I * Tp[c] * Tp[c];
+        fT[c] += alpha * I * Tp[c];
+      }
+      con.remove_forbidden(j, L, &director(j * 3), fT);
+      const bool held = con.director_held(j);
+      for (int c = 0; c < 2; ++c) director_acceleration(j * 2 + c) = held ? 0.0 : -fT[c] / I;
+    }
+    damping(le) += diss;
+  }
+};
+
+/// One velocity program of every condition at time t: out[bc * 3 + c].
+void evaluate_programs(const Constraints& constraints, double t, Vec3 (Constraints::*program)(int, double) const,
+                       std::vector<double>& out) {
+  out.assign(3 * constraints.size(), 0.0);
+  for (std::size_t bc = 0; bc < constraints.size(); ++bc) {
+    const Vec3 p = (constraints.*program)(int(bc), t);
+    for (int c = 0; c < 3; ++c) out[bc * 3 + c] = p[c];
+  }
+}
+
+/// The Accelerate kernel of state s at time t (`programs`: filled with the programs' accelerations at t), with
+/// `director_rate` in the damping force.
+Accelerate accelerations(const ShellModel& model, const Constraints& constraints, bool director_loads, double alpha,
+                         ShellState& s, double t, double dt, const RateRows& director_rate,
+                         std::vector<double>& programs) {
+  evaluate_programs(constraints, t, &Constraints::prescribed_acceleration, programs);
+  return Accelerate{ConstraintViews(constraints, programs),
+                    kernel_view(std::as_const(s.v)),
+                    kernel_view(std::as_const(s.internal_force)),
+                    kernel_view(std::as_const(s.external_force)),
+                    kernel_view(model.mass),
+                    kernel_view(std::as_const(s.director_force)),
+                    kernel_view(std::as_const(s.external_director_force)),
+                    kernel_view(std::as_const(s.rotation)),
+                    kernel_view(std::as_const(s.t)),
+                    kernel_view(model.inertia),
+                    kernel_view(director_rate),
+                    kernel_view(s.a),
+                    kernel_view(s.reaction),
+                    kernel_view(s.director_acceleration),
+                    kernel_view(s.damping_dissipation),
+                    alpha,
+                    dt,
+                    director_loads};
+}
+
+}  // namespace
+
+CentralDifference::CentralDifference(ShellModel& model, Constraints& constraints, const Loads& loads,
+                                     ForceAssembly& assembly, Fracture& fracture, PhaseTimes& times,
+                                     double mass_damping, Relaxation relaxation)
+    : model_(model),
+      constraints_(constraints),
+      loads_(loads),
+      assembly_(assembly),
+      fracture_(fracture),
+      times_(times),
+      alpha_(mass_damping),
+      relaxation_(relaxation),
+      residual_(std::numeric_limits<double>::quiet_NaN()) {
+  director_rate_predicted_.assign(model.owned);
+}
+
+void CentralDifference::start(ShellState& s) {
+  assembly_.exchange_state(s);
+  assembly_.compute_forces(s, fracture_.cohesive_params());
+  book_plastic_work(s);
+  loads_.external_forces(s.time, s, s.external_force, s.external_director_force);
+  const Accelerate accelerate = accelerations(model_, constraints_, loads_.has_director_loads(), alpha_, s, s.time,
+                                              0.0, s.director_rate, programs_a_);
+  Kokkos::parallel_for("shellfrac::StartAccelerations", KernelRange(0, model_.owned), accelerate);
+}
+
+void CentralDifference::step(ShellState& s, double dt, double t1) {
+  {
+    ScopedTimer timer(times_.update);
+    remember_step_start(s);
+    predict(s, dt, t1);  // paper eqs. 47-48, Algorithm 1
+    constraints_.apply_rotations(t1, s);
+  }
+  assembly_.exchange_state(s);
+  assembly_.compute_forces(s, fracture_.cohesive_params());
+  ScopedTimer timer(times_.update);
+  book_plastic_work(s);
+  if (fracture_.enabled()) {
+    ScopedTimer nucleation(times_.nucleation);
+    fracture_.nucleate(s.step, t1, s, model_, assembly_.edge_tractions());
+  }
+  loads_.external_forces(t1, s, s.external_force, s.external_director_force);
+  correct(s, dt, t1);
+  constraints_.apply_rotations(t1, s);
+  constraints_.add_rotation_work(s, model_);
+  s.time = t1;
+  ++s.step;
+  check_finite(s);
+  if (relaxation_.enabled) relax(s);
+}
+
+// Static relaxation (docs/theory.md §7.5): when the global kinetic energy has passed a peak, the free velocities are
+// set to zero (the removed energy is booked as damping), so the motion settles into the static state; once the
+// programs have reached their final values, the run is relaxed when the out-of-balance force is small. The global
+// sums are exact (ExactSum), so the decisions are the same on any rank count.
+void CentralDifference::relax(ShellState& s) {
+  ExactSum kinetic;
+  for (LocalId le = 0; le < model_.owned; ++le) kinetic.add(model_.element_kinetic(s, le));
+  kinetic.allreduce(model_.dm.comm());
+  const double k = kinetic.value();
+  if (k < kinetic_before_) {
+    reset_free_velocities(s);
+    kinetic_before_ = 0;
+  } else {
+    kinetic_before_ = k;
+  }
+  if (s.time < relaxation_.start) return;
+  residual_ = relative_residual(s);
+  relaxed_ = residual_ <= relaxation_.tolerance;
+}
+
+void CentralDifference::reset_free_velocities(ShellState& s) const {
+  using Motion = Constraints::Motion;
+  for (LocalId le = 0; le < model_.owned; ++le) {
+    double removed = 0;
+    for (int A = 0; A < position_nodes; ++A) {
+      const LocalId i = le * position_nodes + A;
+      if (constraints_.motion(i) == Motion::held) continue;
+      double* v = s.v.point(i);
+      for (int c = 0; c < 3; ++c)
+        if (!constraints_.prescribed(i, c)) removed += 0.5 * *model_.mass.point(i) * v[c] * v[c], v[c] = 0;
+    }
+    for (int b = 0; b < director_nodes; ++b) {
+      const LocalId j = le * director_nodes + b;
+      if (constraints_.director_held(j)) continue;
+      removed += model_.rotary_kinetic(s, le, b);
+      s.director_rate.point(j)[0] = s.director_rate.point(j)[1] = 0;
+    }
+    *s.damping_dissipation.at(le) += removed;
+  }
+}
+
+// |f_ext - f_int| over the free components (projected on the constraints) relative to the norm of the forces that
+// hold the state: loads, reactions and the couples of held directors.
+double CentralDifference::relative_residual(const ShellState& s) const {
+  using Motion = Constraints::Motion;
+  ExactSum r2, f2;
+  for (LocalId i = 0; i < model_.owned * position_nodes; ++i) {
+    const double *f = s.internal_force.point(i), *fe = s.external_force.point(i), *R = s.reaction.point(i);
+    double r[3];
+    for (int c = 0; c < 3; ++c) r[c] = constraints_.free(i, c) ? fe[c] - f[c] : 0.0, f2.add(fe[c] * fe[c] + R[c] * R[c]);
+    if (constraints_.motion(i) == Motion::on_planes) constraints_.position_planes().remove_normal_components(i, r);
+    for (int c = 0; c < 3; ++c) r2.add(r[c] * r[c]);
+  }
+  for (LocalId j = 0; j < model_.owned * director_nodes; ++j) {
+    const double *g = s.director_force.point(j), *ge = s.external_director_force.point(j);
+    double w[3], L[3][3], rT[2];
+    for (int c = 0; c < 3; ++c) w[c] = ge[c] - g[c], f2.add(ge[c] * ge[c]);
+    if (constraints_.director_held(j)) {
+      for (int c = 0; c < 3; ++c) f2.add(g[c] * g[c]);
+      continue;
+    }
+    load_matrix(s.rotation.point(j), L);
+    disc::lambda_bar_transpose_times(L, w, rT);
+    constraints_.director_constraints().remove_forbidden_components(j, L, s.t.point(j), rT);
+    r2.add(rT[0] * rT[0] + rT[1] * rT[1]);
+  }
+  r2.allreduce(model_.dm.comm()), f2.allreduce(model_.dm.comm());
+  const double ref = std::sqrt(f2.value());
+  return ref > 0 ? std::sqrt(r2.value()) / ref : std::sqrt(r2.value());
+}
+
+void CentralDifference::remember_step_start(const ShellState& s) {
+  x_start_.vector().assign(s.x.vector().begin(), s.x.vector().begin() + std::size_t(model_.owned) * position_values);
+  // The loaded elements' rows only: an element without external forces at t_n adds 0 * dx to its work, and leaving
+  // out a term that is +0 or -0 does not change a sum that starts at +0 (the work stays bitwise the same).
+  fext_start_slot_.assign(std::size_t(model_.owned), -1);
+  std::vector<double>& rows = fext_start_.vector();
+  rows.clear();
+  for (LocalId le = 0; le < model_.owned; ++le) {
+    const double* f = s.external_force.at(le);
+    if (std::all_of(f, f + position_values, [](double v) { return v == 0.0; })) continue;
+    fext_start_slot_[std::size_t(le)] = int(rows.size() / position_values);
+    rows.insert(rows.end(), f, f + position_values);
+  }
+  if (loads_.has_director_loads()) {
+    t_start_.vector().assign(s.t.vector().begin(), s.t.vector().begin() + std::size_t(model_.owned) * director_values);
+    gext_start_ = s.external_director_force;
+  }
+  constraints_.begin_step(s, model_);
+}
+
+// Predictor (docs/theory.md §7.4 steps 1-2): x^{n+1} = x^n + dt v^n + dt^2/2 a^n, v_pre = v^n + dt/2 a^n; held nodes
+// stay at X, prescribed components follow the exact integral of their velocity program, and no increment crosses
+// a symmetry plane. Directors: Delta T = dt T-dot + dt^2/2 T-ddot, then the exponential map.
+void CentralDifference::predict(ShellState& s, double dt, double t1) {
+  evaluate_programs(constraints_, t1, &Constraints::prescribed_displacement, programs_u_);
+  const ConstraintViews con(constraints_, programs_u_);
+  const KernelView<double> x = kernel_view(s.x), v = kernel_view(s.v);
+  const KernelView<const double> a = kernel_view(std::as_const(s.a)), X = kernel_view(model_.X);
+  Kokkos::parallel_for("shellfrac::PredictPositions", KernelRange(0, model_.owned * position_nodes), [=](const LocalId i) {
+    double* xi = &x(i * 3);
+    double* vi = &v(i * 3);
+    const double* ai = &a(i * 3);
+    const double* Xi = &X(i * 3);
+    const Motion motion = con.motion(i);
+    if (motion == Motion::held) {
+      for (int c = 0; c < 3; ++c) xi[c] = Xi[c], vi[c] = 0;
+      return;
+    }
+    double dx[3];
+    for (int c = 0; c < 3; ++c) dx[c] = dt * vi[c] + 0.5 * dt * dt * ai[c];
+    if (motion == Motion::prescribed) {  // the exact integral of the program: no drift
+      for (int c = 0; c < 3; ++c) {
+        const bool p = con.prescribed(i, c);
+        xi[c] = p ? Xi[c] + con.program_of(i, c) : xi[c] + dx[c];
+        if (!p) vi[c] += 0.5 * dt * ai[c];
+      }
+      return;
+    }
+    for (int c = 0; c < 3; ++c) vi[c] += 0.5 * dt * ai[c];
+    if (motion == Motion::on_planes) {
+      con.remove_plane_normals(i, dx);
+      con.remove_plane_normals(i, vi);
+    }
+    for (int c = 0; c < 3; ++c) xi[c] += dx[c];
+  });
+  const KernelView<double> t = kernel_view(s.t), rotation = kernel_view(s.rotation);
+  const KernelView<const double> Td = kernel_view(std::as_const(s.director_rate));
+  const KernelView<const double> Tdd = kernel_view(std::as_const(s.director_acceleration));
+  const KernelView<double> Tp = kernel_view(director_rate_predicted_);
+  Kokkos::parallel_for("shellfrac::PredictDirectors", KernelRange(0, model_.owned * director_nodes), [=](const LocalId j) {
+    double L[3][3], dT[2];
+    load_matrix(&rotation(j * 9), L);
+    const bool held = con.director_held(j);
+    double* Tpj = &Tp(j * 2);
+    for (int c = 0; c < 2; ++c) {
+      dT[c] = held ? 0.0 : dt * Td(j * 2 + c) + 0.5 * dt * dt * Tdd(j * 2 + c);  // paper eq. 47
+      Tpj[c] = held ? 0.0 : Td(j * 2 + c) + 0.5 * dt * Tdd(j * 2 + c);         // paper eq. 48, gamma = 1/2
+    }
+    double* tj = &t(j * 3);
+    con.remove_forbidden(j, L, tj, dT);
+    con.remove_forbidden(j, L, tj, Tpj);
+    disc::update_director(tj, L, dT, tj, L);  // Algorithm 1
+    store_matrix(L, &rotation(j * 9));
+  });
+}
+
+// Adds the plastic work of the last element kernel (which updated the plastic state to the new time in place).
+// A return map that hit its iteration limit stops the run on every rank, naming the element.
+void CentralDifference::book_plastic_work(ShellState& s) const {
+  if (!model_.any_plastic) return;
+  GlobalId bad = -1;
+  const auto& failed = assembly_.return_failed();
+  const auto& work = assembly_.plastic_work_increment();
+  for (LocalId le = 0; le < model_.owned; ++le) {
+    if (!model_.is_plastic(le)) continue;
+    if (failed[le] && bad < 0) bad = model_.dm.element_gid(le);
+    *s.plastic_work.at(le) += work[le];
+  }
+  const double worst = parallel::max(bad >= 0 ? double(bad) : -1.0, model_.dm.comm());
+  SHELLFRAC_REQUIRE(worst < 0, "the plastic return map did not converge in element " << GlobalId(worst) + 1
+                                   << " at step " << s.step << ", time " << s.time
+                                   << " (docs/theory.md §4.3; a non-finite or extreme strain?)");
+}
+
+// The corrector, element by element (one pass over the element's rows): accelerations and reactions at t1
+// (paper eq. 49, with the damping force alpha m v_pre), velocities at t1 (paper eq. 50, gamma = 1/2:
+// v^{n+1} = v_pre + dt/2 a^{n+1} on free components, the program's velocity on prescribed ones;
+// T-dot^{n+1} = T-dot_pre + dt/2 T-ddot^{n+1}), and the work of the loads and of the reactions over the step by the
+// trapezoidal rule (docs/theory.md §9.7).
+void CentralDifference::correct(ShellState& s, double dt, double t1) {
+  const Accelerate accelerate = accelerations(model_, constraints_, loads_.has_director_loads(), alpha_, s, t1, dt,
+                                              director_rate_predicted_, programs_a_);
+  evaluate_programs(constraints_, t1, &Constraints::prescribed_velocity, programs_v_);
+  const ConstraintViews con(constraints_, programs_v_);
+  const KernelView<double> v = kernel_view(s.v), rate = kernel_view(s.director_rate);
+  const KernelView<const double> a = kernel_view(std::as_const(s.a));
+  const KernelView<const double> Tdd = kernel_view(std::as_const(s.director_acceleration));
+  const KernelView<const double> Tp = kernel_view(std::as_const(director_rate_predicted_));
+  const KernelView<const double> x = kernel_view(std::as_const(s.x)), x0 = kernel_view(std::as_const(x_start_));
+  const KernelView<const double> fe = kernel_view(std::as_const(s.external_force)), fe0 = kernel_view(std::as_const(fext_start_));
+  const KernelView<const int> fe0_slot = kernel_view(std::as_const(fext_start_slot_));
+  const KernelView<const double> R = kernel_view(std::as_const(s.reaction));
+  const KernelView<const double> t = kernel_view(std::as_const(s.t)), t0 = kernel_view(std::as_const(t_start_));
+  const KernelView<const double> ge = kernel_view(std::as_const(s.external_director_force));
+  const KernelView<const double> ge0 = kernel_view(std::as_const(gext_start_));
+  const KernelView<double> external_work = kernel_view(s.external_work), reaction_work = kernel_view(s.reaction_work);
+  const bool director_loads = loads_.has_director_loads();
+  Kokkos::parallel_for("shellfrac::Correct", KernelRange(0, model_.owned), [=](const LocalId le) {
+    double R0[position_values];  // the reactions at t_n, before accelerate overwrites them
+    for (int k = 0; k < position_values; ++k) R0[k] = R(le * position_values + k);
+    accelerate(le);
+    for (LocalId i = le * position_nodes; i < (le + 1) * position_nodes; ++i) {
+      double* vi = &v(i * 3);
+      const double* ai = &a(i * 3);
+      const Motion motion = con.motion(i);
+      if (motion == Motion::held) continue;
+      if (motion == Motion::prescribed) {
+        for (int c = 0; c < 3; ++c) vi[c] = con.prescribed(i, c) ? con.program_of(i, c) : vi[c] + 0.5 * dt * ai[c];
+        continue;
+      }
+      for (int c = 0; c < 3; ++c) vi[c] += 0.5 * dt * ai[c];
+    }
+    for (LocalId j = le * director_nodes; j < (le + 1) * director_nodes; ++j)
+      for (int c = 0; c < 2; ++c) rate(j * 2 + c) = Tp(j * 2 + c) + 0.5 * dt * Tdd(j * 2 + c);
+    double wext = 0, wreact = 0;
+    const double* f0 = fe0_slot(le) >= 0 ? &fe0(fe0_slot(le) * position_values) : nullptr;
+    for (int j = 0; j < position_values; ++j) {
+      const LocalId k = le * position_values + j;
+      const double dx = x(k) - x0(k);
+      wext += 0.5 * ((f0 ? f0[j] : 0.0) + fe(k)) * dx;
+      wreact += 0.5 * (R0[j] + R(k)) * dx;
+    }
+    if (director_loads)  // the work of the edge couples on the directors
+      for (LocalId k = le * director_values; k < (le + 1) * director_values; ++k)
+        wext += 0.5 * (ge0(k) + ge(k)) * (t(k) - t0(k));
+    external_work(le) += wext, reaction_work(le) += wreact;
+  });
+}
+
+void CentralDifference::check_finite(const ShellState& s) const {
+  GlobalId bad = -1;
+  for (LocalId le = 0; le < model_.owned && bad < 0; ++le)
+    for (int i = 0; i < position_values; ++i)
+      if (!std::isfinite(s.x.at(le)[i]) || !std::isfinite(s.internal_force.at(le)[i])) {
+        bad = model_.dm.element_gid(le);
+        break;
+      }
+  const double worst = parallel::max(bad >= 0 ? double(bad) : -1.0, model_.dm.comm());
+  if (worst >= 0) {
+    std::ostringstream os;
+    os << "numerical blow-up at step " << s.step << ", time " << s.time
+       << ": non-finite position or force in element " << GlobalId(worst) + 1
+       << " (time step too large or unstable input?)";
+    throw NumericalError(os.str());  // on every rank (the reduction above)
+  }
+}
+
+}  // namespace shellfrac::solver
