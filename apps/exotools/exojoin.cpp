@@ -6,7 +6,7 @@
 #include <iostream>
 #include <string>
 
-#include "shellfrac/io/exodus_results.hpp"
+#include "shellfrac/io/results_reader.hpp"
 
 int main(int argc, char** argv) {
   constexpr const char* usage =

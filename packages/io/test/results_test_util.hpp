@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "shellfrac/io/exodus_results.hpp"
+#include "shellfrac/io/results_compare.hpp"
 
 namespace shellfrac::io::test {
 

@@ -12,7 +12,7 @@
 #include <Teuchos_XMLParameterListCoreHelpers.hpp>
 
 #include "deck_test_util.hpp"
-#include "shellfrac/io/exodus_results.hpp"
+#include "shellfrac/io/results_reader.hpp"
 #include "shellfrac/solver/simulation.hpp"
 
 namespace shellfrac::test {

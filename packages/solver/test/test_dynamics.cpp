@@ -13,7 +13,7 @@
 
 #include "deck_test_util.hpp"
 #include "shellfrac/core/parallel.hpp"
-#include "shellfrac/io/exodus_results.hpp"
+#include "shellfrac/io/results_reader.hpp"
 #include "shellfrac/solver/simulation.hpp"
 
 using namespace shellfrac;

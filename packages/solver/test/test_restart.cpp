@@ -21,7 +21,7 @@
 #include "deck_test_util.hpp"
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/io/checkpoint.hpp"
-#include "shellfrac/io/exodus_results.hpp"
+#include "shellfrac/io/results_reader.hpp"
 #include "shellfrac/mesh/generators.hpp"
 #include "shellfrac/meshio/exodus_mesh_io.hpp"
 #include "shellfrac/solver/simulation.hpp"

@@ -13,7 +13,7 @@
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
-#include "shellfrac/io/exodus_results.hpp"
+#include "shellfrac/io/results_reader.hpp"
 #include "shellfrac/mesh/generators.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
 #include "shellfrac/meshio/exodus_mesh_io.hpp"

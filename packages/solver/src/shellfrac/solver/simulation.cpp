@@ -13,7 +13,7 @@
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/io/checkpoint.hpp"
-#include "shellfrac/io/exodus_results.hpp"
+#include "shellfrac/io/results_writer.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
 #include "shellfrac/solver/dynamics/shell_dynamics.hpp"
 #include "shellfrac/solver/input/mesh_sets.hpp"

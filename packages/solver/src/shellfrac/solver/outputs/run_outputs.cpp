@@ -10,7 +10,7 @@
 #include "shellfrac/core/files.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
-#include "shellfrac/io/exodus_results.hpp"
+#include "shellfrac/io/results_writer.hpp"
 #include "shellfrac/io/history.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
 #include "shellfrac/solver/dynamics/shell_dynamics.hpp"

@@ -13,7 +13,7 @@
 
 #include "shellfrac/core/types.hpp"
 #include "shellfrac/io/checkpoint.hpp"
-#include "shellfrac/io/exodus_results.hpp"
+#include "shellfrac/io/results_writer.hpp"
 #include "shellfrac/io/history.hpp"
 
 namespace shellfrac::solver {

@@ -9,7 +9,7 @@
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/decomposition/partitioner.hpp"
-#include "shellfrac/io/exodus_results.hpp"
+#include "shellfrac/io/results_writer.hpp"
 #include "shellfrac/mesh/coincident_nodes.hpp"
 #include "shellfrac/mesh/edge_topology.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"

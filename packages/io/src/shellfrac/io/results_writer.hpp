@@ -1,6 +1,7 @@
 #pragma once
-/// \file exodus_results.hpp
-/// DG results in Exodus II (docs/output.md).
+/// \file results_writer.hpp
+/// Writing DG results in Exodus II (docs/output.md); reading them back: results_reader.hpp, comparing them:
+/// results_compare.hpp.
 ///  * Nodes are DG nodes: every element writes its own copies (3 for P1, 6 for P2), so discontinuities
 ///    and cracks open in ParaView. Global DG node id = element_gid * nodes_per_element + a (written +1 in
 ///    the node id map); element id map = element_gid + 1.
@@ -98,56 +99,9 @@ class ExodusResultsWriter {
   std::string file_;
 };
 
-/// A results data set read back: one file or a whole per-rank set, merged and sorted by element global id.
-struct ExodusResults {
-  std::string title;
-  int nodes_per_element = 3;
-  std::vector<GlobalId> element_gids;   ///< ascending
-  std::vector<int> element_block_ids;   ///< Exodus block id per element
-  std::vector<std::string> block_names; ///< by block id order as in the file(s)
-  std::vector<int> block_ids;
-  std::vector<Vec3> node_coords;        ///< element-major, as written
-  std::vector<double> times;
-  std::vector<std::string> nodal_names;    ///< scalar names as stored, e.g. displ_x
-  std::vector<std::string> element_names;
-  /// nodal[step][var][node], element[step][var][element]
-  std::vector<std::vector<std::vector<double>>> nodal, element;
-  std::vector<std::string> global_names;     ///< global variables (the history columns of a shellfrac run)
-  std::vector<std::vector<double>> global;   ///< global[step][var]
-  std::vector<std::string> info;
-  std::vector<ResultsSet> node_sets, side_sets;  ///< merged over the files of a set
-  int num_files = 1;
-};
-
-/// Reads `path` if it exists; otherwise the per-rank set `path.<np>.<rank>` (np found from the directory).
-/// Throws InputError naming the path if neither exists or a file is not a shellfrac-style results file.
-ExodusResults read_results(const std::string& path);
-
-/// The files of the per-rank set `path.<np>.<rank>` found next to `path` (ordered by rank; empty if there is
-/// none). Throws InputError if the set is incomplete or several sets (different np) are present.
-std::vector<std::string> find_rank_files(const std::string& path);
-
-/// Reads the given files (e.g. find_rank_files(path)) as one data set, merged by element global id.
-ExodusResults read_results_files(const std::vector<std::string>& files);
+struct ExodusResults;
 
 /// Writes a merged data set as one file (the join tool).
 void write_results(const ExodusResults& results, const std::string& path);
-
-/// Comparison tolerances: |a - b| <= max(abs, rel * max(|a|, |b|)) per variable; "coordinates" for coords.
-struct CompareTolerances {
-  double default_abs = 0.0, default_rel = 0.0;
-  struct Entry {
-    std::string name;
-    double abs = 0, rel = 0;
-  };
-  std::vector<Entry> per_variable;
-  /// Parses a tolerance file: lines "<variable|default|coordinates> [absolute A] [relative R]", '#' comments.
-  static CompareTolerances from_file(const std::string& path);
-};
-
-/// Compares two data sets by element global id: same elements, blocks, times, variable names; coordinates and
-/// values within tolerance. Returns a list of human-readable differences (empty = equal), at most max_report.
-std::vector<std::string> compare_results(const ExodusResults& a, const ExodusResults& b,
-                                         const CompareTolerances& tol, std::size_t max_report = 20);
 
 }  // namespace shellfrac::io
