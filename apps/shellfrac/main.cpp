@@ -29,6 +29,7 @@
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/files.hpp"
 #include "shellfrac/core/parallel.hpp"
+#include "shellfrac/core/version.hpp"
 #include "shellfrac/solver/setup/stop_signals.hpp"
 #include "shellfrac/solver/simulation.hpp"
 
@@ -63,7 +64,7 @@ const char* usage =
 /// The run's plan on rank 0: mesh, partition, time step, mass scaling, regions, then any warnings.
 void print_summary(const shellfrac::solver::Simulation& sim, const std::string& deck) {
   const auto& s = sim.summary();
-  std::cout << "shellfrac 0.1.0: " << deck << " on " << shellfrac::parallel::size() << " rank(s)\n"
+  std::cout << "shellfrac " << shellfrac::version << ": " << deck << " on " << shellfrac::parallel::size() << " rank(s)\n"
             << "  mesh: " << s.elements << " TRI6 elements, " << s.nodes << " nodes, " << s.edges << " edges ("
             << s.interfaces << " interfaces, " << s.boundary_edges << " boundary, " << s.non_manifold_edges
             << " non-manifold)\n"
@@ -106,7 +107,7 @@ int run(int argc, char** argv) {
       if (root) std::cout << usage;
       return 0;
     } else if (a == "--version") {
-      if (root) std::cout << "shellfrac 0.1.0\n";
+      if (root) std::cout << "shellfrac " << shellfrac::version << "\n";
       return 0;
     } else if (a == "--print-valid-parameters") {
       if (!root) return 0;

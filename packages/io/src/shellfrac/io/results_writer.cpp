@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <ctime>
 #include <exception>
 #include <filesystem>
@@ -19,6 +20,7 @@
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
+#include "shellfrac/core/version.hpp"
 #include "shellfrac/exodus/exodus_api.hpp"
 #include "shellfrac/io/results_conventions.hpp"
 #include "shellfrac/io/results_reader.hpp"
@@ -66,7 +68,8 @@ int put_qa(int id) {
   char date[MAX_STR_LENGTH + 1] = "", clock[MAX_STR_LENGTH + 1] = "";
   std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
   std::strftime(clock, sizeof clock, "%H:%M:%S", std::gmtime(&now));
-  char name[] = "shellfrac", version[] = "0.1.0";
+  char name[] = "shellfrac", version[MAX_STR_LENGTH + 1] = "";
+  std::snprintf(version, sizeof version, "%s", shellfrac::version);
   char* record[1][4] = {{name, version, date, clock}};
   return ex_put_qa(id, 1, record);
 }

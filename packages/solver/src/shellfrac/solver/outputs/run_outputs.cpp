@@ -9,6 +9,7 @@
 #include "shellfrac/core/digest.hpp"
 #include "shellfrac/core/files.hpp"
 #include "shellfrac/core/parallel.hpp"
+#include "shellfrac/core/version.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/io/results_writer.hpp"
 #include "shellfrac/io/history.hpp"
@@ -32,7 +33,7 @@ std::vector<std::string> info_records(const Teuchos::ParameterList& deck, const 
   Teuchos::writeParameterListToXmlOStream(pl, os);
   Digest digest;
   digest.add(os.str());
-  std::vector<std::string> lines = {"shellfrac 0.1.0", "deck: " + file, "expanded deck digest: " + digest.hex()};
+  std::vector<std::string> lines = {std::string("shellfrac ") + shellfrac::version, "deck: " + file, "expanded deck digest: " + digest.hex()};
   std::istringstream is(os.str());
   for (std::string line; std::getline(is, line);)
     for (std::size_t i = 0; i < line.size() || i == 0; i += 80) lines.push_back(line.substr(i, 80));
