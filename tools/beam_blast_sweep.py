@@ -123,12 +123,11 @@ def damage_info(exo, nx):
     """Damaged elements (Gamma = 0: damage = 1 once an edge of the element is activated) at the first
     output with damage and at the last output: distances [mm] of their centroids from the nearer support,
     and their max eq. plastic strain at that first output (time t_frame)."""
-    import netCDF4
-    with netCDF4.Dataset(exo) as d:
-        names = [b"".join(n.compressed()).decode() for n in d.variables["name_elem_var"][:]]
-        var = lambda n: d.variables[f"vals_elem_var{names.index(n) + 1}eb1"][:]
-        dam, eps, t = var("damage"), var("eq_plastic_strain"), d.variables["time_whole"][:]
-        xc = d.variables["coordx"][:][d.variables["connect1"][:][:, :3] - 1].mean(axis=1)
+    from shellfrac_tools.exodus import ExodusFile
+    with ExodusFile(exo) as d:
+        block, conn = d.blocks()[0]
+        dam, eps, t = d.element("damage", block), d.element("eq_plastic_strain", block), d.times()
+        xc = d.coordinates()[:, 0][conn[:, :3]].mean(axis=1)
     hit = np.nonzero((dam > 0).any(axis=1))[0]
     if not len(hit):
         return {}

@@ -17,47 +17,22 @@ Reads Exodus II through netCDF4 (Debian: python3-netcdf4).
 import argparse
 import csv
 import os
-import sys
 
 import numpy as np
-from netCDF4 import Dataset
 
-from results_files import ResultsError, rank_files
-
-
-def fail(message):
-    sys.stderr.write("fracture_summary.py: %s\n" % message)
-    sys.exit(1)
+from shellfrac_tools.cli import fail
+from shellfrac_tools.exodus import ExodusFile
+from shellfrac_tools.results_files import ResultsError, rank_files
+from shellfrac_tools.tables import TableError, read_table
 
 
-def read_csv(path, required=True):
-    """The table's columns by name. A last line without its newline is a row still being written (a running or
-    cut run): it is left out, with a note. Any other row that is not complete numbers is an error naming it."""
-    if not os.path.exists(path):
-        if required:
-            fail("missing %s" % path)
-        return None
-    with open(path, newline="") as f:
-        text = f.read()
-    lines = text.split("\n")
-    if lines and lines[-1] != "":
-        sys.stderr.write("fracture_summary.py: note: %s ends in a partial line (a run still writing?): left out\n"
-                         % path)
-    lines = lines[:-1]
-    if not lines:
-        fail("%s is empty" % path)
-    header = next(csv.reader([lines[0]]))
-    body = []
-    for number, line in enumerate(lines[1:], start=2):
-        row = line.split(",")
-        try:
-            values = [float(v) for v in row]
-        except ValueError:
-            values = None
-        if values is None or len(values) != len(header):
-            fail("%s: line %d is not %d numbers: '%s'" % (path, number, len(header), line[:80]))
-        body.append(values)
-    return {name: np.array([r[k] for r in body]) for k, name in enumerate(header)}
+def read_csv(path):
+    """The table's columns by name (shellfrac_tools.tables.read_table: a partial last line is left out with a note);
+    any other problem stops the script, naming the file and the line."""
+    try:
+        return read_table(path)
+    except TableError as e:
+        fail(str(e))
 
 
 def exodus_files(base):
@@ -71,18 +46,10 @@ def element_nodes(files):
     """Reference coordinates of every element's nodes: {element id (1-based): (nodes, 3) array}."""
     nodes = {}
     for path in files:
-        with Dataset(path) as ds:
-            x = np.stack([np.asarray(ds.variables[c][:]) for c in ("coordx", "coordy", "coordz")], axis=1)
-            ids = np.asarray(ds.variables["elem_num_map"][:]) if "elem_num_map" in ds.variables else None
-            nblk = len(ds.dimensions["num_el_blk"]) if "num_el_blk" in ds.dimensions else 0
-            start = 0
-            for b in range(1, nblk + 1):
-                name = "connect%d" % b
-                if name not in ds.variables or ds.variables[name].shape[0] == 0:
-                    continue
-                conn = np.asarray(ds.variables[name][:]) - 1
-                block_ids = ids[start:start + len(conn)] if ids is not None else np.arange(start, start + len(conn)) + 1
-                for e, c in zip(block_ids, conn):
+        with ExodusFile(path) as ds:
+            x, ids, start = ds.coordinates(), ds.element_ids(), 0
+            for _, conn in ds.blocks():
+                for e, c in zip(ids[start:start + len(conn)], conn):
                     nodes[int(e)] = x[c]
                 start += len(conn)
     return nodes

@@ -38,10 +38,8 @@ import numpy as np  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, HERE)
-from netCDF4 import Dataset  # noqa: E402
-from plot_history import column, read_history  # noqa: E402
-from plot_results import names  # noqa: E402
+from shellfrac_tools.exodus import ExodusFile  # noqa: E402
+from shellfrac_tools.tables import column, read_table  # noqa: E402
 
 BINARY = os.path.join(ROOT, "build", "apps", "shellfrac", "shellfrac")
 MPI_ENV = os.path.join(ROOT, "tools", "mpi-env.sh")
@@ -156,15 +154,16 @@ def flank_jumps(exo, x_tip, h, delta_of_t, delta_at):
     """Opening of the crack flanks at the Exodus frame nearest to Delta/h = delta_at: for every ligament vertex
     (y = 0, x >= x_tip) the displacement jump between the copies of the elements above (y > 0) and below; returns
     (Delta/h of the frame, x [m], jump [m] as an (n, 3) array), or None when the file has no displacements."""
-    with Dataset(exo) as d:
-        nod = names(d, "name_nod_var")
-        t = d.variables["time_whole"][:]
-        if "displ_x" not in nod or len(t) == 0:
+    with ExodusFile(exo) as d:
+        t = d.times()
+        if len(t) == 0:
             return None
         fr = int(np.argmin(np.abs(delta_of_t(t) / h - delta_at)))
-        xyz = np.stack([d.variables[c][:] for c in ("coordx", "coordy", "coordz")], axis=1)
-        u = np.stack([d.variables["vals_nod_var%d" % (nod.index("displ_" + c) + 1)][fr, :] for c in "xyz"], axis=1)
-        conn = d.variables["connect1"][:] - 1
+        u = d.displacement(fr)
+        if u is None:
+            return None
+        xyz = d.coordinates()
+        conn = d.blocks()[0][1]
     above, below = {}, {}
     tol = 1e-9 * max(1.0, float(np.abs(xyz).max()))
     for c in conn:
@@ -182,7 +181,7 @@ def analyse(deck, out, delta_kind, force_kind, steady):
     name = os.path.splitext(os.path.basename(deck))[0]
     prm = deck_params(deck)
     path = os.path.join(out, f"{name}_history.csv")
-    hist = read_history(path)
+    hist = read_table(path)
     h, y0 = prm["h"], prm["Y0"]
     norm = y0 * h * B_LIGAMENT
     t = column(hist, "time", path)

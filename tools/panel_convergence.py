@@ -19,8 +19,8 @@ import time
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plot_history import column, plot_histories, read_history  # noqa: E402
+from plot_history import plot_histories
+from shellfrac_tools.tables import column, read_table
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DECK = os.path.join(ROOT, "xml", "cylindrical_panel.xml")
@@ -77,7 +77,7 @@ def run(deck, base, out_dir, np_ranks):
 
 
 def measures(hist_path):
-    h = read_history(hist_path)
+    h = read_table(hist_path)
     t, w = column(h, "time", hist_path), column(h, "centre_displ_z", hist_path)
     ke = column(h, "kinetic_energy", hist_path)
     ke0 = ke[0]

@@ -14,36 +14,20 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
 
 
-class ColumnError(Exception):
-    pass
-
-
-def read_history(path):
-    """Returns {column name: numpy array} of a history CSV (header line, then numeric rows)."""
-    with open(path) as f:
-        header = f.readline().strip().split(",")
-    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-    return {name: data[:, i] for i, name in enumerate(header)}
-
-
-def column(hist, name, path):
-    if name not in hist:
-        raise ColumnError(f"{path}: no column '{name}'; available columns: {', '.join(hist)}")
-    return hist[name]
+from shellfrac_tools.tables import TableError, column, read_table  # noqa: E402
 
 
 def plot_histories(paths, col, out, labels=None, time_scale=1.0, time_unit="s", ylabel=None, title=None):
-    """Plots column col of each CSV in paths against time*time_scale into out. Raises ColumnError."""
+    """Plots column col of each CSV in paths against time*time_scale into out. Raises TableError."""
     labels = list(labels or [])
     if len(labels) > len(paths):
         raise ValueError(f"{len(labels)} labels for {len(paths)} files")
     labels += [os.path.basename(p) for p in paths[len(labels):]]
     series = []
     for p in paths:
-        h = read_history(p)
+        h = read_table(p)
         series.append((column(h, "time", p), column(h, col, p)))
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for (t, y), lab in zip(series, labels):
@@ -72,7 +56,7 @@ def main():
     a = ap.parse_args()
     try:
         plot_histories(a.csv, a.column, a.output, a.label, a.time_scale, a.time_unit, a.ylabel, a.title)
-    except (ColumnError, ValueError, OSError) as e:
+    except (TableError, ValueError, OSError) as e:
         print(f"plot_history.py: error: {e}", file=sys.stderr)
         return 1
     print(f"wrote {a.output}")

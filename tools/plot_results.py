@@ -8,7 +8,6 @@ RESULTS.exo may be a single file or the base name of a per-rank set RESULTS.exo.
 Reads Exodus II through netCDF4 (Debian: python3-netcdf4).
 """
 import argparse
-import csv
 import os
 import sys
 
@@ -19,38 +18,25 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import PolyCollection  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
-from netCDF4 import Dataset  # noqa: E402
-from results_files import ResultsError, rank_files  # noqa: E402
-
-
-def names(ds, var):
-    if var not in ds.variables:
-        return []
-    return ["".join(c.decode() for c in row if c).strip() for row in ds.variables[var][:].data]
+from shellfrac_tools.exodus import ExodusFile  # noqa: E402
+from shellfrac_tools.results_files import ResultsError, rank_files  # noqa: E402
+from shellfrac_tools.tables import TableError, read_table  # noqa: E402
 
 
 def read_piece(path, field, step):
-    """Triangles (vertex coordinates, deformed) and the element field of one Exodus file."""
-    with Dataset(path) as ds:
-        x = np.stack([ds.variables[c][:] for c in ("coordx", "coordy", "coordz")], axis=1)
-        nod = names(ds, "name_nod_var")
-        if "displ_x" in nod and "time_whole" in ds.variables and len(ds.variables["time_whole"]) > 0:
-            for k, c in enumerate("xyz"):
-                x[:, k] += ds.variables["vals_nod_var%d" % (nod.index("displ_" + c) + 1)][step, :]
-        elem_names = names(ds, "name_elem_var")
+    """Triangles (vertex coordinates, deformed) and the element field of one Exodus file (the block index where the
+    file has no such field, or no step)."""
+    with ExodusFile(path) as ds:
+        has_steps = len(ds.times()) > 0
+        x = ds.coordinates()
+        u = ds.displacement(step) if has_steps else None
+        if u is not None:
+            x = x + u
         tris, values = [], []
-        nblk = len(ds.dimensions["num_el_blk"]) if "num_el_blk" in ds.dimensions else 0
-        for b in range(1, nblk + 1):
-            conn_name = "connect%d" % b
-            if conn_name not in ds.variables or ds.variables[conn_name].shape[0] == 0:
-                continue
-            conn = ds.variables[conn_name][:] - 1
+        for b, conn in ds.blocks():
             tris.append(x[conn[:, :3]])
-            v = "vals_elem_var%deb%d" % (elem_names.index(field) + 1, b) if field in elem_names else None
-            if v and v in ds.variables:
-                values.append(ds.variables[v][step, :])
-            else:
-                values.append(np.full(conn.shape[0], float(b)))
+            v = ds.element(field, b, step) if has_steps else None
+            values.append(v if v is not None else np.full(conn.shape[0], float(b)))
         if not tris:
             return np.zeros((0, 3, 3)), np.zeros(0)
         return np.concatenate(tris), np.concatenate(values)
@@ -73,11 +59,13 @@ def main():
     tris = np.concatenate([p[0] for p in pieces])
     vals = np.concatenate([p[1] for p in pieces])
 
-    rows = []
+    hist = {}
     if a.history and os.path.exists(a.history):
-        with open(a.history) as f:
-            rows = list(csv.DictReader(f))
-    with_history = len(rows) > 1
+        try:
+            hist = read_table(a.history)
+        except TableError as e:
+            sys.exit("plot_results: %s" % e)
+    with_history = len(hist.get("time", [])) > 1
     fig = plt.figure(figsize=(12 if with_history else 8, 5))
     flat = np.ptp(tris[:, :, 2]) <= 1e-12 * max(np.ptp(tris[:, :, 0]), np.ptp(tris[:, :, 1]), 1e-300)
     cmap = plt.get_cmap("tab20" if a.field == "rank" else "viridis")
@@ -103,20 +91,20 @@ def main():
     fig.colorbar(pc, ax=ax, label=a.field, shrink=0.7)
     ax.set_title("%s: %d elements, %d file(s)" % (os.path.basename(a.results), len(tris), len(files)))
     if with_history:
-        t = [float(r["time"]) for r in rows]
-        probes = [c for c in rows[0] if c.endswith("_displ_z")]
+        t = hist["time"]
+        probes = [c for c in hist if c.endswith("_displ_z")]
         hx = fig.add_subplot(2 if probes else 1, 2, 2)
         for col in ("kinetic_energy", "strain_energy", "penalty_energy", "plastic_dissipation",
                     "energy_balance_error"):
-            if col in rows[0] and (col != "plastic_dissipation" or any(float(r[col]) != 0 for r in rows)):
-                hx.plot(t, [float(r[col]) for r in rows], label=col)
+            if col in hist and (col != "plastic_dissipation" or np.any(hist[col] != 0)):
+                hx.plot(t, hist[col], label=col)
         hx.set_xlabel("time")
         hx.set_ylabel("energy")
         hx.legend(fontsize="small")
         if probes:
             px = fig.add_subplot(2, 2, 4)
             for col in probes:
-                px.plot(t, [float(r[col]) for r in rows], label=col)
+                px.plot(t, hist[col], label=col)
             px.set_xlabel("time")
             px.set_ylabel("mean displacement z")
             px.legend(fontsize="small")

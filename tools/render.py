@@ -64,7 +64,8 @@ from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetColorTransferFun
                              IOSSReader, MergeBlocks, ProgrammableFilter, Render, SaveScreenshot, Show, Text)
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # pvpython may not add the script's directory
-from results_files import ResultsError, rank_files  # noqa: E402
+from shellfrac_tools.cli import fail  # noqa: E402
+from shellfrac_tools.results_files import ResultsError, rank_files  # noqa: E402
 
 VIEWS = {  # direction from the focal point towards the camera, view-up
     "iso": ((-1.0, -1.0, 0.8), (0.0, 0.0, 1.0)),
@@ -103,11 +104,6 @@ def _shellfrac_colour_index():
     output.CellData.append(dsa.VTKArray(out), 'colour_index')
 _shellfrac_colour_index()
 """
-
-
-def fail(message):
-    sys.stderr.write("render.py: %s\n" % message)
-    sys.exit(1)
 
 
 def result_files(path):

@@ -29,18 +29,14 @@ import os
 import re
 import statistics
 import subprocess
-import sys
 import tempfile
+
+from shellfrac_tools.cli import fail
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PROJECT = os.path.dirname(HERE)
 BASE_CELLS = (200, 40)
 PHASES = ("element_kernel", "interface_kernel", "gather", "communication", "update")
-
-
-def fail(message):
-    sys.stderr.write("scaling.py: %s\n" % message)
-    sys.exit(1)
 
 
 def parse():

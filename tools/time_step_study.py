@@ -17,6 +17,17 @@ Writes <outdir>/study.csv and prints a Markdown table. As root, `source tools/mp
 """
 import argparse, csv, math, os, subprocess, sys, time
 
+from shellfrac_tools import decks
+from shellfrac_tools.launch import ENV, Launcher
+from shellfrac_tools.tables import read_table
+
+OUTPUT = """  <ParameterList name="Output">
+    <Parameter name="Base Name" type="string" value="run"/>
+    <Parameter name="Fields" type="Array(string)" value="{displ, damage, fragment_id}"/>
+    <Parameter name="Probes" type="Array(string)" value="{centre}"/>
+  </ParameterList>
+"""
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DEFAULT_BINARY = os.path.join(ROOT, "build", "apps", "shellfrac", "shellfrac")
 
@@ -29,107 +40,34 @@ VARIANTS = {
     "s_I = 25, mass-scaled to 2x": {"Rotary Inertia Scale": 25.0, "Target Time Step": "2x", "Force Mass Scaling": True},
 }
 
-DECK = """<ParameterList name="shellfrac">
-  <ParameterList name="Mesh">
-    <Parameter name="Source" type="string" value="Cylinder"/>
-    <ParameterList name="Cylinder">
-      <Parameter name="Radius" type="double" value="2.0"/>
-      <Parameter name="Length" type="double" value="4.0"/>
-      <Parameter name="Axial Elements" type="int" value="40"/>
-      <Parameter name="Circumferential Elements" type="int" value="126"/>
-      <Parameter name="Block Name" type="string" value="skin"/>
-    </ParameterList>
-  </ParameterList>
-  <ParameterList name="Blocks">
-    <ParameterList name="skin">
-      <Parameter name="Thickness" type="double" value="1.5e-3"/>
-      <Parameter name="Material" type="string" value="al"/>
-    </ParameterList>
-  </ParameterList>
-  <ParameterList name="Materials">
-    <ParameterList name="al">
-      <Parameter name="Density" type="double" value="2700"/>
-      <Parameter name="Young's Modulus" type="double" value="72e9"/>
-      <Parameter name="Poisson's Ratio" type="double" value="0.34"/>
-      <Parameter name="Model" type="string" value="Resultant Plasticity"/>
-      <Parameter name="Yield Stress" type="double" value="490e6"/>
-      <Parameter name="Hardening Modulus" type="double" value="933e6"/>
-      <Parameter name="Cohesive Strength" type="double" value="540e6"/>
-      <Parameter name="Fracture Energy" type="double" value="{gamma}"/>
-    </ParameterList>
-  </ParameterList>
-  <ParameterList name="Regions">
-    <ParameterList name="patch">
-      <Parameter name="Shape" type="string" value="Cylinder Sector"/>
-      <Parameter name="Center" type="Array(double)" value="{{0, 0, 0}}"/>
-      <Parameter name="Axis" type="Array(double)" value="{{1, 0, 0}}"/>
-      <Parameter name="Reference Direction" type="Array(double)" value="{{0, 0, 1}}"/>
-      <Parameter name="Angle Range" type="Array(double)" value="{{22.5, 135}}"/>
-      <Parameter name="Axial Range" type="Array(double)" value="{{1.0, 3.0}}"/>
-      <Parameter name="Radius Range" type="Array(double)" value="{{1.8, 2.2}}"/>
-    </ParameterList>
-    <ParameterList name="centre">
-      <Parameter name="Shape" type="string" value="Sphere"/>
-      <Parameter name="Center" type="Array(double)" value="{{{cx}, {cy}, {cz}}}"/>
-      <Parameter name="Radius" type="double" value="0.03"/>
-    </ParameterList>
-  </ParameterList>
-  <ParameterList name="Loads">
-    <ParameterList name="pulse">
-      <Parameter name="Type" type="string" value="Pressure"/>
-      <Parameter name="Elements" type="string" value="patch"/>
-      <Parameter name="Function" type="string" value="Exponential"/>
-      <Parameter name="Pressure" type="double" value="3.37e6"/>
-      <Parameter name="Decay Time" type="double" value="6.92e-4"/>
-    </ParameterList>
-  </ParameterList>
-  <ParameterList name="Time Integration">
-    <Parameter name="End Time" type="double" value="{end}"/>
-    <Parameter name="History Interval" type="int" value="{hist}"/>
-    <Parameter name="Output Interval" type="double" value="{end}"/>
-{extra}  </ParameterList>
-  <ParameterList name="Output">
-    <Parameter name="Base Name" type="string" value="run"/>
-    <Parameter name="Fields" type="Array(string)" value="{{displ, damage, fragment_id}}"/>
-    <Parameter name="Probes" type="Array(string)" value="{{centre}}"/>
-  </ParameterList>
-</ParameterList>
-"""
-
 COLUMNS = ["variant", "dt_us", "steps", "wall_s", "us_per_elem_step", "added_mass_pct", "w_peak_mm", "w_end_mm",
            "t_first_crack_us", "cohesive_edges", "separated_edges", "fragments", "kinetic_J", "plastic_J",
            "cohesive_dissipation_J", "external_work_J", "balance_error_pct_of_work"]
 
 
-def parameter_xml(name, value):
-    if isinstance(value, bool):
-        return '    <Parameter name="%s" type="bool" value="%s"/>\n' % (name, "true" if value else "false")
-    return '    <Parameter name="%s" type="double" value="%r"/>\n' % (name, value)
-
-
-def read_history(path):
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    return [{k: float(v) for k, v in r.items()} for r in rows]
-
-
 def run_variant(args, name, params, previous_dt):
     folder = os.path.join(args.outdir, name.replace(" ", "").replace(",", "_").replace("=", ""))
     os.makedirs(folder, exist_ok=True)
-    extra = ""
+    time_integration = {"End Time": args.end_time, "History Interval": args.history_interval,
+                        "Output Interval": args.end_time}
     for key, value in params.items():
-        if value == "2x":
-            value = 2.0 * previous_dt
-        extra += parameter_xml(key, value)
+        time_integration[key] = 2.0 * previous_dt if value == "2x" else value
     theta = math.radians(0.5 * (22.5 + 135.0))  # the patch centre: counter-clockwise about +x from +z
-    deck = DECK.format(gamma=args.gamma, end=args.end_time, hist=args.history_interval, extra=extra,
-                       cx=2.0, cy=-2.0 * math.sin(theta), cz=2.0 * math.cos(theta))
+    centre = decks.sublist_xml("centre", {"Shape": "Sphere", "Center": (2.0, -2.0 * math.sin(theta),
+                                                                        2.0 * math.cos(theta)), "Radius": 0.03}, 4)
+    deck = decks.torn_cylinder(
+        radius=2.0, length=4.0, axial=40, circumferential=126,
+        material={"Density": 2700.0, "Young's Modulus": 72e9, "Poisson's Ratio": 0.34,
+                  "Model": "Resultant Plasticity", "Yield Stress": 490e6, "Hardening Modulus": 933e6,
+                  "Cohesive Strength": 540e6, "Fracture Energy": args.gamma},
+        time_integration=time_integration, regions=centre,
+        output=OUTPUT)
     with open(os.path.join(folder, "run.xml"), "w") as f:
         f.write(deck)
-    command = (["mpirun", "-np", str(args.ranks)] if args.ranks > 1 else []) + [args.binary, "run.xml"]
+    command = Launcher("mpirun").command([args.binary, "run.xml"], np=args.ranks if args.ranks > 1 else None)
     start = time.time()
     with open(os.path.join(folder, "run.log"), "w") as log:
-        rc = subprocess.call(command, cwd=folder, stdout=log, stderr=subprocess.STDOUT)
+        rc = subprocess.call(command, cwd=folder, stdout=log, stderr=subprocess.STDOUT, env=ENV)
     wall = time.time() - start
     text = open(os.path.join(folder, "run.log")).read()
     if rc != 0:
@@ -138,7 +76,8 @@ def run_variant(args, name, params, previous_dt):
     for line in text.splitlines():  # "mass scaling: ... added mass 0.0326 = 1.23 % of 2.65; ..."
         if "added mass" in line and "%" in line:
             added = float(line.split("=")[1].split("%")[0])
-    rows = read_history(os.path.join(folder, "run_history.csv"))
+    h = read_table(os.path.join(folder, "run_history.csv"))
+    rows = [dict(zip(h, values)) for values in zip(*h.values())]
     radial = [math.hypot(r["centre_displ_y"], r["centre_displ_z"]) for r in rows]  # the probe's motion in y-z
     first_crack = next((r["time"] for r in rows if r["num_cohesive_edges"] > 0), float("nan"))
     last = rows[-1]

@@ -7,7 +7,6 @@
 
 usage: test_layers.py PROJECT_DIR
 """
-import os
 import pathlib
 import shutil
 import subprocess

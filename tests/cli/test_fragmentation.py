@@ -30,9 +30,9 @@ import os
 import shutil
 import sys
 import tempfile
-import importlib.util
 import unittest
 
+import fragmentation_study as study  # tools/ (on PYTHONPATH)
 from cli_common import Launcher
 
 SRC, SHELLFRAC, MPIEXEC = sys.argv[1:4]
@@ -41,10 +41,6 @@ launch = Launcher(MPIEXEC, sys.argv[4:])
 CELLS = 100  # around the ring: 100 axial edges
 BAND = (0.9, 1.4)  # s / s_ZMR at rate 10 (see the module's text)
 
-_spec = importlib.util.spec_from_file_location("fragmentation_study",
-                                               os.path.join(SRC, "tools", "fragmentation_study.py"))
-study = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(study)
 
 
 def ring_deck(strength="", seed=0, end_time=8e-6, checkpoint_steps=0):

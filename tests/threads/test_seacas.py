@@ -17,8 +17,7 @@ import sys
 import tempfile
 import unittest
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cli"))
-from cli_common import ENV  # noqa: E402
+from shellfrac_tools.launch import ENV
 
 PROJECT, SHELLFRAC, EXOCOMPARE, EXOJOIN, SEACAS_BIN, MPIEXEC = sys.argv[1:7]
 PREFLAGS = sys.argv[7:]

@@ -17,13 +17,12 @@ usage: test_threads.py PROJECT_DIR SHELLFRAC EXOCOMPARE MPIEXEC [MPIEXEC_PREFLAG
 import os
 import re
 import shutil
-import subprocess
 import sys
 import tempfile
 import unittest
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cli"))
-from cli_common import ENV, Launcher  # noqa: E402
+from shellfrac_tools import decks
+from shellfrac_tools.launch import Launcher
 
 PROJECT, SHELLFRAC, EXOCOMPARE, MPIEXEC = sys.argv[1:5]
 PREFLAGS = sys.argv[5:]
@@ -31,65 +30,14 @@ launch = Launcher(MPIEXEC, PREFLAGS)
 
 END_TIMES = {"cylindrical_panel": 2e-4, "beam_blast_225": 3e-5}
 
-TORN_CYLINDER = """<ParameterList name="shellfrac">
-  <ParameterList name="Mesh">
-    <Parameter name="Source" type="string" value="Cylinder"/>
-    <ParameterList name="Cylinder">
-      <Parameter name="Radius" type="double" value="0.6"/>
-      <Parameter name="Length" type="double" value="1.2"/>
-      <Parameter name="Axial Elements" type="int" value="12"/>
-      <Parameter name="Circumferential Elements" type="int" value="38"/>
-      <Parameter name="Block Name" type="string" value="skin"/>
-    </ParameterList>
-  </ParameterList>
-  <ParameterList name="Blocks">
-    <ParameterList name="skin">
-      <Parameter name="Thickness" type="double" value="1.5e-3"/>
-      <Parameter name="Material" type="string" value="al"/>
-    </ParameterList>
-  </ParameterList>
-  <ParameterList name="Materials">
-    <ParameterList name="al">
-      <Parameter name="Density" type="double" value="2700"/>
-      <Parameter name="Young's Modulus" type="double" value="72e9"/>
-      <Parameter name="Poisson's Ratio" type="double" value="0.34"/>
-      <Parameter name="Cohesive Strength" type="double" value="540e6"/>
-      <Parameter name="Fracture Energy" type="double" value="50e3"/>
-      <Parameter name="Strength Distribution" type="string" value="Weibull"/>
-      <Parameter name="Weibull Modulus" type="double" value="8"/>
-      <Parameter name="Weibull Reference Length" type="double" value="0.1"/>
-    </ParameterList>
-  </ParameterList>
-  <ParameterList name="Fracture">
-    <Parameter name="Seed" type="int" value="3"/>
-  </ParameterList>
-  <ParameterList name="Regions">
-    <ParameterList name="patch">
-      <Parameter name="Shape" type="string" value="Cylinder Sector"/>
-      <Parameter name="Center" type="Array(double)" value="{0, 0, 0}"/>
-      <Parameter name="Axis" type="Array(double)" value="{1, 0, 0}"/>
-      <Parameter name="Reference Direction" type="Array(double)" value="{0, 0, 1}"/>
-      <Parameter name="Angle Range" type="Array(double)" value="{22.5, 135}"/>
-      <Parameter name="Axial Range" type="Array(double)" value="{0.3, 0.9}"/>
-      <Parameter name="Radius Range" type="Array(double)" value="{0.5, 0.7}"/>
-    </ParameterList>
-  </ParameterList>
-  <ParameterList name="Loads">
-    <ParameterList name="pulse">
-      <Parameter name="Type" type="string" value="Pressure"/>
-      <Parameter name="Elements" type="string" value="patch"/>
-      <Parameter name="Function" type="string" value="Exponential"/>
-      <Parameter name="Pressure" type="double" value="3.37e6"/>
-      <Parameter name="Decay Time" type="double" value="6.92e-4"/>
-    </ParameterList>
-  </ParameterList>
-  <ParameterList name="Time Integration">
-    <Parameter name="End Time" type="double" value="1.5e-4"/>
-    <Parameter name="History Interval" type="int" value="5"/>
-    <Parameter name="Output Interval" type="double" value="5e-5"/>
-  </ParameterList>
-</ParameterList>
-"""
+TORN_CYLINDER = decks.torn_cylinder(
+    radius=0.6, length=1.2, axial=12, circumferential=38,
+    material={"Density": 2700.0, "Young's Modulus": 72e9, "Poisson's Ratio": 0.34, "Cohesive Strength": 540e6,
+              "Fracture Energy": 50e3, "Strength Distribution": "Weibull", "Weibull Modulus": 8.0,
+              "Weibull Reference Length": 0.1},
+    fracture=decks.sublist_xml("Fracture", {"Seed": 3}),
+    time_integration={"End Time": 1.5e-4, "History Interval": 5, "Output Interval": 5e-5})
+
 LAYOUTS = [(1, 2), (1, 4), (2, 1), (2, 2), (2, 4)]
 
 
@@ -111,10 +59,9 @@ def prepare(deck, folder):
 
 
 def run(deck_path, ranks, threads):
-    env = dict(ENV, OMP_NUM_THREADS=str(threads), OMP_PROC_BIND="false")
-    args = [SHELLFRAC, "--quiet", os.path.basename(deck_path)]
-    cmd = ([MPIEXEC, "-np", str(ranks)] + PREFLAGS if ranks > 1 else []) + args
-    r = subprocess.run(cmd, cwd=os.path.dirname(deck_path), env=env, capture_output=True, text=True, timeout=600)
+    r = launch([SHELLFRAC, "--quiet", os.path.basename(deck_path)], cwd=os.path.dirname(deck_path),
+               np=ranks if ranks > 1 else None, timeout=600,
+               env={"OMP_NUM_THREADS": str(threads), "OMP_PROC_BIND": "false"})
     assert r.returncode == 0, "%s at %d x %d failed:\n%s%s" % (deck_path, ranks, threads, r.stdout, r.stderr)
 
 

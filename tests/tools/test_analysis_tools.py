@@ -20,10 +20,9 @@ import unittest
 import numpy as np
 
 PROJECT = sys.argv.pop(1) if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
-sys.path.insert(0, os.path.join(PROJECT, "tools"))
-import fracture_summary  # noqa: E402
-import results_files  # noqa: E402
+import fracture_summary  # noqa: E402  (tools/ on PYTHONPATH: ctest sets it)
 import scaling  # noqa: E402
+from shellfrac_tools import results_files  # noqa: E402
 
 
 class ResultNamesAndTables(unittest.TestCase):
