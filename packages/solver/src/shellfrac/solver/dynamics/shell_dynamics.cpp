@@ -8,6 +8,7 @@
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/materials/elastic_resultant.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
+#include "shellfrac/solver/contact/rigid_walls.hpp"
 #include "shellfrac/solver/dynamics/initial_conditions.hpp"
 #include "shellfrac/solver/fracture/fracture.hpp"
 #include "shellfrac/solver/input/deck.hpp"
@@ -75,8 +76,9 @@ struct ShellDynamics::Impl {
         fracture(deck.fracture, sets, model),
         constraints(deck.boundary_conditions, sets, dm, deck.file),
         loads(deck.loads, sets, mesh, model),
+        walls(deck.contact, model, dt, deck.file),
         assembly(model, fracture.enabled(), times),
-        integrator(model, constraints, loads, assembly, fracture, times, deck.time.mass_damping,
+        integrator(model, constraints, loads, walls, assembly, fracture, times, deck.time.mass_damping,
                    relaxation_settings(deck)) {
     set_initial_state(deck.initial_velocities, sets, model, constraints, state);
     integrator.start(state);
@@ -89,6 +91,7 @@ struct ShellDynamics::Impl {
   Fracture fracture;
   Constraints constraints;
   Loads loads;
+  RigidWalls walls;
   ForceAssembly assembly;
   CentralDifference integrator;
   ShellState state;
@@ -126,6 +129,10 @@ std::vector<double> ShellDynamics::probes(const std::vector<std::vector<char>>& 
 
 std::vector<double> ShellDynamics::reactions() const {
   return reaction_values(impl_->state, impl_->model, impl_->constraints);
+}
+
+std::vector<double> ShellDynamics::wall_forces() const {
+  return impl_->walls.normal_forces(impl_->state.time, impl_->state);
 }
 
 double ShellDynamics::bytes_per_element() const {

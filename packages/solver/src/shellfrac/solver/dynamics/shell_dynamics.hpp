@@ -63,6 +63,9 @@ class ShellDynamics {
   /// over the director nodes it holds (3) (constraints.hpp: which condition a node's reaction belongs to).
   /// Collective.
   std::vector<double> reactions() const;
+  /// Per rigid wall, in deck order: the normal force it exerts on the shells now (history <wall>_wall_force).
+  /// Collective.
+  std::vector<double> wall_forces() const;
   /// Accumulated phase timings on this rank.
   const PhaseTimes& phase_times() const;
   /// Bytes of state, reference data and force buffers held on this rank, divided by the owned elements.

@@ -253,6 +253,11 @@ Teuchos::RCP<const Teuchos::ParameterList> Deck::valid_parameters() {
   pl->set("Discretization", *DiscretizationParams::valid_parameters(), "DG stabilization constants");
   pl->set("Time Integration", *TimeParams::valid_parameters(), "Explicit central differences");
   pl->set("Fracture", *FractureParams::valid_parameters(), "Extrinsic cohesive fracture on element edges");
+  pl->set("Contact", *ContactParams::valid_parameters(), "Contact with rigid walls (theory.md §12)");
+  auto wall = *RigidWall::valid_parameters();  // an example wall, below the skeleton's plate
+  wall.set("Point", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0, -1.0)),
+           RigidWall::valid_parameters()->getEntry("Point").docString());
+  pl->sublist("Contact").sublist("Rigid Walls").set("floor", wall);
   auto& bcs = pl->sublist("Boundary Conditions", false, "One sublist per condition, named freely");
   bcs.set("clamped end", *BoundaryCondition::valid_parameters());
   auto& ics = pl->sublist("Initial Conditions", false, "One sublist per initial velocity, named freely");
@@ -277,8 +282,8 @@ Deck Deck::from_parameters(const Teuchos::RCP<Teuchos::ParameterList>& deck, con
   // Top level: only the known sublists; user-named children of Blocks/Materials are validated one by one.
   Teuchos::ParameterList top("shellfrac");
   for (const char* name : {"Mesh", "Blocks", "Materials", "Partitioning", "Output", "Checkpoint", "Discretization",
-                           "Time Integration", "Fracture", "Boundary Conditions", "Initial Conditions", "Loads",
-                           "Regions"})
+                           "Time Integration", "Fracture", "Contact", "Boundary Conditions", "Initial Conditions",
+                           "Loads", "Regions"})
     top.sublist(name);
   params::validate(pl, top, ctx);
   require_sections(pl, ctx);
@@ -289,6 +294,7 @@ Deck Deck::from_parameters(const Teuchos::RCP<Teuchos::ParameterList>& deck, con
   d.discretization = DiscretizationParams::from_parameters(pl.sublist("Discretization"), ctx / "Discretization");
   d.time = TimeParams::from_parameters(pl.sublist("Time Integration"), ctx / "Time Integration");
   d.fracture = FractureParams::from_parameters(pl.sublist("Fracture"), ctx / "Fracture");
+  d.contact = ContactParams::from_parameters(pl.sublist("Contact"), ctx / "Contact");
   read_conditions(pl, ctx, d);
   check_magnitudes(d, ctx);
   read_output(pl, ctx, d);

@@ -12,6 +12,7 @@
 
 #include "shellfrac/core/parameters.hpp"
 #include "shellfrac/materials/material_params.hpp"
+#include "shellfrac/solver/input/contact_params.hpp"
 #include "shellfrac/solver/input/dynamics_params.hpp"
 #include "shellfrac/solver/input/mesh_factory.hpp"
 #include "shellfrac/solver/input/regions.hpp"
@@ -62,6 +63,7 @@ struct Deck {
   DiscretizationParams discretization;
   TimeParams time;
   FractureParams fracture;
+  ContactParams contact;
   std::vector<BoundaryCondition> boundary_conditions;
   std::vector<InitialVelocity> initial_velocities;
   std::vector<Load> loads;

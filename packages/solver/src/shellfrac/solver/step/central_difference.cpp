@@ -15,6 +15,7 @@
 #include "shellfrac/solver/fracture/fracture.hpp"
 #include "shellfrac/solver/model/kernel_views.hpp"
 #include "shellfrac/solver/model/shell_model.hpp"
+#include "shellfrac/solver/contact/rigid_walls.hpp"
 #include "shellfrac/solver/step/constraints.hpp"
 #include "shellfrac/solver/step/force_assembly.hpp"
 #include "shellfrac/solver/step/loads.hpp"
@@ -165,11 +166,12 @@ Accelerate accelerations(const ShellModel& model, const Constraints& constraints
 }  // namespace
 
 CentralDifference::CentralDifference(ShellModel& model, Constraints& constraints, const Loads& loads,
-                                     ForceAssembly& assembly, Fracture& fracture, PhaseTimes& times,
-                                     double mass_damping, Relaxation relaxation)
+                                     const RigidWalls& walls, ForceAssembly& assembly, Fracture& fracture,
+                                     PhaseTimes& times, double mass_damping, Relaxation relaxation)
     : model_(model),
       constraints_(constraints),
       loads_(loads),
+      walls_(walls),
       assembly_(assembly),
       fracture_(fracture),
       times_(times),
@@ -183,7 +185,7 @@ void CentralDifference::start(ShellState& s) {
   assembly_.exchange_state(s);
   assembly_.compute_forces(s, fracture_.cohesive_params());
   book_plastic_work(s);
-  loads_.external_forces(s.time, s, s.external_force, s.external_director_force);
+  external_forces(s.time, s);
   const Accelerate accelerate = accelerations(model_, constraints_, loads_.has_director_loads(), alpha_, s, s.time,
                                               0.0, s.director_rate, programs_a_);
   Kokkos::parallel_for("shellfrac::StartAccelerations", KernelRange(0, model_.owned), accelerate);
@@ -204,7 +206,7 @@ void CentralDifference::step(ShellState& s, double dt, double t1) {
     ScopedTimer nucleation(times_.nucleation);
     fracture_.nucleate(s.step, t1, s, model_, assembly_.edge_tractions());
   }
-  loads_.external_forces(t1, s, s.external_force, s.external_director_force);
+  external_forces(t1, s);
   correct(s, dt, t1);
   constraints_.apply_rotations(t1, s);
   constraints_.add_rotation_work(s, model_);
@@ -212,6 +214,11 @@ void CentralDifference::step(ShellState& s, double dt, double t1) {
   ++s.step;
   check_finite(s);
   if (relaxation_.enabled) relax(s);
+}
+
+void CentralDifference::external_forces(double t, ShellState& s) const {
+  loads_.external_forces(t, s, s.external_force, s.external_director_force);
+  if (!walls_.empty()) walls_.add_forces(t, s, s.external_force);
 }
 
 // Static relaxation (docs/theory.md §7.5): when the global kinetic energy has passed a peak, the free velocities are

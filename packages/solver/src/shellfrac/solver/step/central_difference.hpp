@@ -15,6 +15,7 @@ class Constraints;
 class ForceAssembly;
 class Fracture;
 class Loads;
+class RigidWalls;
 struct ShellModel;
 
 class CentralDifference {
@@ -26,8 +27,10 @@ class CentralDifference {
     double tolerance = 1e-6, start = 0;
   };
   /// `mass_damping`: alpha of the damping force alpha m v (dynamic relaxation; 0 = none).
-  CentralDifference(ShellModel& model, Constraints& constraints, const Loads& loads, ForceAssembly& assembly,
-                    Fracture& fracture, PhaseTimes& times, double mass_damping, Relaxation relaxation);
+  /// `walls`: the rigid walls, whose contact forces join the loads' (docs/theory.md §12).
+  CentralDifference(ShellModel& model, Constraints& constraints, const Loads& loads, const RigidWalls& walls,
+                    ForceAssembly& assembly, Fracture& fracture, PhaseTimes& times, double mass_damping,
+                    Relaxation relaxation);
 
   /// Start-up (docs/theory.md §7.4): forces, loads, accelerations and reactions of the initial state.
   /// Collective.
@@ -47,6 +50,8 @@ class CentralDifference {
   void book_plastic_work(ShellState& s) const;
   void correct(ShellState& s, double dt, double t1);
   void check_finite(const ShellState& s) const;
+  /// The loads and the walls' contact forces at time t: s.external_force, s.external_director_force.
+  void external_forces(double t, ShellState& s) const;
   void relax(ShellState& s);
   void reset_free_velocities(ShellState& s) const;
   double relative_residual(const ShellState& s) const;
@@ -54,6 +59,7 @@ class CentralDifference {
   ShellModel& model_;
   Constraints& constraints_;
   const Loads& loads_;
+  const RigidWalls& walls_;
   ForceAssembly& assembly_;
   Fracture& fracture_;
   PhaseTimes& times_;

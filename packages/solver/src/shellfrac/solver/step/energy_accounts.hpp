@@ -54,10 +54,12 @@ std::vector<double> reaction_values(const ShellState& s, const ShellModel& model
 
 /// One history row as (column name, value) pairs in column order: step, time, dt, energies and the balance
 /// error, the probes (<set>_displ_x ... <set>_vel_z), the other work accounts, the fracture counts, the
-/// reactions (<condition>_reaction_x ... _moment_z) and the angular momentum.
+/// reactions (<condition>_reaction_x ... _moment_z), the angular momentum and the rigid walls' normal forces
+/// (<wall>_wall_force).
 using HistoryRow = std::vector<std::pair<std::string, double>>;
 HistoryRow history_row(const StepRecord& r, double e0, const std::vector<std::string>& probe_names,
                        const std::vector<double>& probes, const std::vector<std::string>& condition_names,
-                       const std::vector<double>& reactions);
+                       const std::vector<double>& reactions, const std::vector<std::string>& wall_names,
+                       const std::vector<double>& wall_forces);
 
 }  // namespace shellfrac::solver

@@ -1,0 +1,57 @@
+#include "shellfrac/solver/contact/rigid_walls.hpp"
+
+#include "shellfrac/core/error.hpp"
+#include "shellfrac/core/exact_sum.hpp"
+#include "shellfrac/decomposition/distributed_mesh.hpp"
+#include "shellfrac/solver/model/shell_model.hpp"
+
+namespace shellfrac::solver {
+
+RigidWalls::RigidWalls(const ContactParams& params, const ShellModel& model, double dt, const std::string& file)
+    : model_(model), walls_(params.walls), stiffness_per_mass_(params.penalty_scale / (dt * dt)) {
+  if (walls_.empty()) return;
+  const double sf = dt / model.stable_dt;
+  SHELLFRAC_INPUT_REQUIRE(4 * sf * sf + params.penalty_scale < 4,
+                          file << ": 'Contact->Penalty Scale' = " << params.penalty_scale << " with the time step "
+                               << dt << " (" << sf << " of the stable step) makes the step unstable: a node in "
+                               << "contact needs (2 S_f)^2 + Penalty Scale < 4 (theory.md §12.2); lower the scale "
+                               << "or the 'Time Integration->Safety Factor'");
+}
+
+double RigidWalls::node_force(const RigidWall& w, double t, const ShellState& s, LocalId le, int A) const {
+  const Vec3 p = w.point_at(t);
+  const double* x = s.x.at(le, A);
+  const double h = model_.sections[model_.dm.element_block(le)].thickness;
+  const double gap = (x[0] - p[0]) * w.normal[0] + (x[1] - p[1]) * w.normal[1] + (x[2] - p[2]) * w.normal[2] - 0.5 * h;
+  return gap < 0 ? -stiffness_per_mass_ * *model_.mass.at(le, A) * gap : 0.0;
+}
+
+void RigidWalls::add_forces(double t, const ShellState& s, PositionRows& fext) const {
+  for (const RigidWall& w : walls_)
+    for (LocalId le = 0; le < model_.owned; ++le)
+      for (int A = 0; A < position_nodes; ++A) {
+        const double f = node_force(w, t, s, le, A);
+        if (f == 0) continue;
+        double* fe = fext.at(le, A);
+        for (int c = 0; c < 3; ++c) fe[c] += f * w.normal[c];
+      }
+}
+
+std::vector<double> RigidWalls::normal_forces(double t, const ShellState& s) const {
+  std::vector<ExactSum> sums(walls_.size());
+  for (std::size_t k = 0; k < walls_.size(); ++k)
+    for (LocalId le = 0; le < model_.owned; ++le)
+      for (int A = 0; A < position_nodes; ++A) sums[k].add(node_force(walls_[k], t, s, le, A));
+  ExactSum::allreduce(sums, model_.dm.comm());
+  std::vector<double> out;
+  for (const auto& f : sums) out.push_back(f.value());
+  return out;
+}
+
+std::vector<std::string> RigidWalls::names() const {
+  std::vector<std::string> out;
+  for (const auto& w : walls_) out.push_back(w.name);
+  return out;
+}
+
+}  // namespace shellfrac::solver
