@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <functional>
 #include <vector>
+#include <sstream>
 #include <string>
 
 #include "cracked_strip.hpp"
@@ -230,4 +231,44 @@ TEST(Restart, RefusesCheckpointValuesNoRunCanHaveWritten) {
       EXPECT_NE(std::string(e.what()).find(f.message), std::string::npos) << f.what << ": " << e.what();
     }
   }
+}
+
+// A checkpoint written before a parameter existed does not record it. Such a parameter at its default is the same
+// physics, so the restart goes on: here the lines of the Contact sublist and of a material's Weibull Modulus are
+// taken out of the checkpoint's fingerprint, as a version without them wrote it. A non-default value of such a
+// parameter, or a whole new entry of a user-named list (a rigid wall), is still refused.
+TEST(Restart, AcceptsParametersAddedSinceAtTheirDefaultsOnly) {
+  const auto root = work_dir("older_checkpoint");
+  if (parallel::rank() == 0) write_cracked_strip(root + "/strip_mesh.exo");
+  const auto dir = fresh(root + "/run");
+  write_deck(dir + "/run.xml", *strip_deck(dir, 10.5e-6));
+  solver::Simulation(dir + "/run.xml", MPI_COMM_WORLD).run();
+  io::CheckpointData older = io::read_checkpoint(checkpoint_in(dir), MPI_COMM_WORLD);
+  std::string kept, removed;
+  std::istringstream lines(older.strings.at("fingerprint physics"));
+  for (std::string line; std::getline(lines, line);)
+    (line.rfind("Contact->", 0) == 0 || line.find("->Weibull Modulus = ") != std::string::npos ? removed : kept) +=
+        line + "\n";
+  ASSERT_NE(removed.find("Contact->Penalty Scale = 0.25"), std::string::npos) << removed;
+  ASSERT_NE(removed.find("->Weibull Modulus = "), std::string::npos) << removed;
+  older.strings["fingerprint physics"] = kept;
+  const std::string file = dir + "/older.h5";
+  io::write_checkpoint(file, older, MPI_COMM_WORLD);
+  const auto restart_error = [&](const Teuchos::RCP<Teuchos::ParameterList>& deck) -> std::string {
+    write_deck(dir + "/run.xml", *deck);
+    try {
+      solver::Simulation sim(dir + "/run.xml", MPI_COMM_WORLD, file);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(restart_error(strip_deck(dir, 14e-6)), "");
+  auto scaled = strip_deck(dir, 14e-6);
+  scaled->sublist("Contact").set("Penalty Scale", 0.5);
+  EXPECT_NE(restart_error(scaled).find("'Contact->Penalty Scale' = 0.5 is new"), std::string::npos);
+  auto walled = strip_deck(dir, 14e-6);
+  walled->sublist("Contact").sublist("Rigid Walls").sublist("floor").set("Point", vec3(0, 0, -1));
+  EXPECT_NE(restart_error(walled).find("'Contact->Rigid Walls->floor->Normal' = {0, 0, 1} is new"), std::string::npos)
+      << restart_error(walled);
 }

@@ -220,8 +220,7 @@ void Simulation::restart_from_checkpoint() {
 // replace) those of the run it starts from. Known by the output base the checkpoint records, and by the checkpoint
 // series the restart file belongs to.
 void Simulation::refuse_changed_physics_over_its_origin(const io::CheckpointData& header) const {
-  const auto physics = header.strings.find("fingerprint physics");
-  if (physics == header.strings.end() || physics->second == fingerprint_.physics) return;
+  if (fingerprint_.physics_differences(header).empty()) return;
   const auto results = header.strings.find("results");
   const std::string& file = deck_.checkpoint.restart_from;
   const bool same_results = results != header.strings.end() && results->second == files::resolved(deck_.output.path(""));

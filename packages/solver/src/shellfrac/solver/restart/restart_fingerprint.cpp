@@ -111,6 +111,42 @@ std::string sets_digest(const mesh::SerialMesh& m) {
          " side sets, " + std::to_string(m.element_sets.size()) + " element sets)";
 }
 
+/// Sublists whose entries the user names (their valid parameters show one example entry).
+const char* const named_lists[] = {"Blocks->", "Materials->", "Boundary Conditions->", "Initial Conditions->",
+                                   "Loads->", "Regions->", "Contact->Rigid Walls->"};
+
+/// Whether `path`, absent from a checkpoint's fingerprint, is a parameter this version added at its default value:
+/// the run that wrote the checkpoint had the same physics. Inside a user-named entry (a material, a wall) only if
+/// the checkpoint has that entry: a whole new entry is new physics.
+bool added_at_default(const std::string& path, const std::string& value, const std::map<std::string, std::string>& ck) {
+  static const auto valid = Deck::valid_parameters();
+  std::string lookup = path;
+  for (const char* list : named_lists) {
+    const std::string prefix(list);
+    if (path.compare(0, prefix.size(), prefix) != 0) continue;
+    const auto arrow = path.find("->", prefix.size());
+    if (arrow == std::string::npos) return false;
+    const std::string entry = path.substr(0, arrow + 2);  // e.g. "Materials->al->"
+    const auto it = ck.lower_bound(entry);
+    if (it == ck.end() || it->first.compare(0, entry.size(), entry) != 0) return false;
+    const Teuchos::ParameterList* example = &valid->sublist(prefix.substr(0, prefix.size() - 2));
+    if (prefix == "Contact->Rigid Walls->") example = &valid->sublist("Contact").sublist("Rigid Walls");
+    if (example->begin() == example->end()) return false;
+    lookup = prefix + example->name(example->begin()) + path.substr(arrow);
+  }
+  const Teuchos::ParameterList* pl = valid.get();
+  for (std::size_t start = 0;;) {
+    const auto arrow = lookup.find("->", start);
+    const std::string name = lookup.substr(start, arrow == std::string::npos ? std::string::npos : arrow - start);
+    const Teuchos::ParameterEntry* e = pl->getEntryPtr(name);
+    if (e == nullptr) return false;
+    if (arrow == std::string::npos) return !e->isList() && value_text(*e) == value;
+    if (!e->isList()) return false;
+    pl = &Teuchos::getValue<Teuchos::ParameterList>(*e);
+    start = arrow + 2;
+  }
+}
+
 /// "'path' = deck value (checkpoint: value)" for every difference, at most `limit` of them.
 std::string differences(const std::map<std::string, std::string>& deck, const std::map<std::string, std::string>& ck) {
   std::ostringstream os;
@@ -118,9 +154,9 @@ std::string differences(const std::map<std::string, std::string>& deck, const st
   const auto add = [&](const std::string& s) { os << (n++ ? "; " : "") << s; };
   for (const auto& [path, value] : deck) {
     const auto it = ck.find(path);
-    if (it == ck.end())
-      add("'" + path + "' = " + value + " is new");
-    else if (it->second != value)
+    if (it == ck.end()) {
+      if (!added_at_default(path, value, ck)) add("'" + path + "' = " + value + " is new");
+    } else if (it->second != value)
       add("'" + path + "' = " + value + " (checkpoint: " + it->second + ")");
   }
   for (const auto& [path, value] : ck)
@@ -167,12 +203,19 @@ void RestartFingerprint::check(const io::CheckpointData& data, const std::string
                                << "): the supports, loads and probes that name them would act on other entities; a "
                                   "checkpoint restarts only on the mesh it was written for");
   if (allow_physics_change) return;
-  const std::string diff = differences(parse_lines(physics), parse_lines(get("fingerprint physics")));
+  get("fingerprint physics");
+  const std::string diff = physics_differences(data);
   SHELLFRAC_INPUT_REQUIRE(diff.empty(),
                           file << ": the deck's physics differ from the run that wrote the checkpoint: " << diff
                                << ". To continue with changed physics on purpose, add --allow-physics-change (End "
                                   "Time, Output Interval, History Interval, Exact Output Times, Time Step, Safety Factor and the Output, "
                                   "Checkpoint, Partitioning and Initial Conditions sublists may change freely)");
+}
+
+std::string RestartFingerprint::physics_differences(const io::CheckpointData& data) const {
+  const auto recorded = data.strings.find("fingerprint physics");
+  if (recorded == data.strings.end()) return "";
+  return differences(parse_lines(physics), parse_lines(recorded->second));
 }
 
 }  // namespace shellfrac::solver

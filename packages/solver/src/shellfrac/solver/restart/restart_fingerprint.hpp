@@ -34,6 +34,10 @@ struct RestartFingerprint {
   /// InputError naming `file` unless the checkpoint was written for this mesh and its sets and (unless
   /// `allow_physics_change`) this physics; the message lists the parameters that differ.
   void check(const io::CheckpointData& data, const std::string& file, bool allow_physics_change) const;
+  /// The physics parameters in which this deck differs from the run that wrote the checkpoint, as a message ("" if
+  /// none, or if the checkpoint records no physics). A parameter added since the checkpoint was written counts
+  /// only if it is not at its default (or belongs to a new entry: a new material, a new wall).
+  std::string physics_differences(const io::CheckpointData& data) const;
 };
 
 }  // namespace shellfrac::solver
