@@ -194,6 +194,31 @@ KOKKOS_INLINE_FUNCTION CohesiveResult cohesive_tractions(const CohesiveParams& p
   return r;
 }
 
+/// The gradient of the free energy phi (eq. 24) with respect to the unit co-normal nu at fixed jumps and fixed
+/// delta_max (theory.md §9.4): eq. 20 splits the jumps along nu, so with s = S(delta_max)/delta_max
+///   dphi/dnu = s [ (c_N - alpha1^2) delta_N [[phi]] + h^2 (alpha2^2 - alpha3^2) theta_N [[t]] ],
+/// c_N = 0 for a closing normal jump with crack-face contact (<delta_N> = 0 there), else 1. Zero when
+/// alpha1 = alpha2 = alpha3 = 1 and the normal jump counts (the law is then isotropic in the jumps); zero when the
+/// point carries nothing (delta_max = 0 or S = 0). Only its part orthogonal to nu matters (nu stays a unit vector).
+/// delta_max is the value after cohesive_tractions updated it.
+KOKKOS_INLINE_FUNCTION void cohesive_conormal_gradient(const CohesiveParams& p, const double jphi[3],
+                                                       const double jt[3], const double nu[3], double delta_max,
+                                                       double dphi_dnu[3]) {
+  const double S = cohesive_strength(p, delta_max);
+  double dN, tN;
+  detail::split_jump(jphi, nu, dN, dphi_dnu);  // dphi_dnu as scratch: only the normal parts are needed
+  detail::split_jump(jt, nu, tN, dphi_dnu);
+  if (!(delta_max > 0.0 && S > 0.0)) {
+    for (int i = 0; i < 3; ++i) dphi_dnu[i] = 0.0;
+    return;
+  }
+  const double s = S / delta_max;
+  const double cN = p.contact && dN < 0.0 ? 0.0 : 1.0;
+  const double a = s * (cN - p.alpha1 * p.alpha1) * dN;
+  const double b = s * p.h * p.h * (p.alpha2 * p.alpha2 - p.alpha3 * p.alpha3) * tN;
+  for (int i = 0; i < 3; ++i) dphi_dnu[i] = a * jphi[i] + b * jt[i];
+}
+
 /// The part of the dissipation D (cohesive_tractions) that releases the energy of the law's starting state
 /// (theory.md §9.7): 1/2 k delta0 (min(delta_max, delta0 + delta_f) - delta0)^+, which reaches 1/2 S0 delta0 at
 /// separation; D less it is 1/2 S0 (min(delta_max, delta0 + delta_f) - delta0)^+, the work of separation (Gamma h

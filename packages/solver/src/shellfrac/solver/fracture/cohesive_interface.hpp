@@ -19,28 +19,45 @@
 
 namespace shellfrac::solver {
 
-/// Current unit co-normal nu (outward of E+) at edge point g of an interface (theory.md §9.1), and the normalized
-/// mean director dbar it is built from. Returns false if the faces are degenerate (|dbar x tau| < 1e-8); nu is
-/// then left unchanged (the caller keeps its last one).
+/// What the co-normal at an edge point is made of (theory.md §9.1, §9.4): the unit edge tangent tau of E- and the
+/// normalized mean director dbar, the lengths they were normalized from (|dx/ds| and |sum L t|), and |dbar x tau|.
+struct ConormalGeometry {
+  double tau[3], dbar[3];
+  double tau_length, dbar_length, cross_length;
+};
+
+/// Current unit co-normal nu (outward of E+) at edge point g of an interface (theory.md §9.1) and what it is built
+/// from (geo). Returns false if the faces are degenerate (|dbar x tau| < 1e-8); nu is then left unchanged (the
+/// caller keeps its last one).
+KOKKOS_INLINE_FUNCTION bool interface_conormal(const disc::DgInterfaceRef& I, int g, const double xm[3][3],
+                                               const double tm[2][3], const double tp[2][3], double nu[3],
+                                               ConormalGeometry& geo) {
+  const double s = disc::edge3_rule.s[g];
+  const disc::EdgePointShapes sh = disc::edge_point_shapes(s, I.s_plus[g]);
+  double dn[3], n[3];
+  disc::edge_shape_p2_derivative(s, dn);
+  for (int c = 0; c < 3; ++c) {
+    geo.tau[c] = 0, geo.dbar[c] = 0;
+    for (int j = 0; j < 3; ++j) geo.tau[c] += dn[j] * xm[j][c];
+    for (int j = 0; j < 2; ++j) geo.dbar[c] += sh.p1[j] * tm[j][c] + sh.p1_other[j] * tp[j][c];
+  }
+  geo.tau_length = disc::normalize3(geo.tau);
+  geo.dbar_length = disc::normalize3(geo.dbar);
+  disc::cross3(geo.dbar, geo.tau, n);
+  geo.cross_length = disc::norm3(n);
+  if (!(geo.cross_length >= 1e-8)) return false;
+  for (int c = 0; c < 3; ++c) nu[c] = n[c] / geo.cross_length;
+  return true;
+}
+
+/// interface_conormal with only the normalized mean director dbar besides nu.
 KOKKOS_INLINE_FUNCTION bool interface_conormal(const disc::DgInterfaceRef& I, int g, const double xm[3][3],
                                                const double tm[2][3], const double tp[2][3], double nu[3],
                                                double dbar[3]) {
-  const double s = disc::edge3_rule.s[g];
-  const disc::EdgePointShapes sh = disc::edge_point_shapes(s, I.s_plus[g]);
-  double dn[3], tau[3] = {0, 0, 0}, n[3];
-  disc::edge_shape_p2_derivative(s, dn);
-  for (int c = 0; c < 3; ++c) {
-    dbar[c] = 0;
-    for (int j = 0; j < 3; ++j) tau[c] += dn[j] * xm[j][c];
-    for (int j = 0; j < 2; ++j) dbar[c] += sh.p1[j] * tm[j][c] + sh.p1_other[j] * tp[j][c];
-  }
-  disc::normalize3(tau);
-  disc::normalize3(dbar);
-  disc::cross3(dbar, tau, n);
-  const double len = disc::norm3(n);
-  if (!(len >= 1e-8)) return false;
-  for (int c = 0; c < 3; ++c) nu[c] = n[c] / len;
-  return true;
+  ConormalGeometry geo;
+  const bool found = interface_conormal(I, g, xm, tm, tp, nu, geo);
+  disc::copy3(geo.dbar, dbar);
+  return found;
 }
 
 /// The jumps [[phi]] = phi^-(g) - phi^+(g) and [[t]] = t^-(g) - t^+(g) at edge point g (theory.md §9.1).
@@ -131,14 +148,71 @@ KOKKOS_INLINE_FUNCTION double facing_weight(double x) {
 /// couple (along nu) to nc, mc and returns the energy per unit reference length.
 KOKKOS_INLINE_FUNCTION double crack_face_contact_forces(const materials::CohesiveParams& p, double edge_length,
                                                         const double d[3], const double dt[3], const double e[3][3],
-                                                        double nc[3], double mc[3]) {
+                                                        double nc[3], double mc[3], double dphi_dnu[3]) {
   const double facing = facing_weight(disc::dot3(d, e[1]) / p.h) * facing_weight(disc::dot3(d, e[2]) / (0.5 * edge_length)) *
                         facing_weight(disc::norm3(dt) / 0.5);
   if (!(facing > 0.0)) return 0.0;
   double fN, mN;
   const double energy = materials::crack_face_contact(p.contact_stiffness, p.h, disc::dot3(d, e[0]), disc::dot3(dt, e[0]), fN, mN);
-  for (int c = 0; c < 3; ++c) nc[c] += facing * fN * e[0][c], mc[c] += facing * mN * e[0][c];
+  for (int c = 0; c < 3; ++c) {
+    nc[c] += facing * fN * e[0][c], mc[c] += facing * mN * e[0][c];
+    dphi_dnu[c] += facing * (fN * d[c] + mN * dt[c]);  // the gaps are d.nu and dt.nu
+  }
   return facing * energy;
+}
+
+/// The forces of an activated interface's energy through its frame at edge point g (theory.md §9.4b). The energy
+/// depends on the frame e (the law's jumps are the DG jumps less the offset o held in e, and the law splits them
+/// along nu = e[0]); e is made of the directors of both sides and, through nu, of the positions of E-. With
+/// P_k = dphi/de_k = -(o_k n_c + o_{3+k} m_c), plus dphi/dnu at fixed jumps for k = 0, the gradient is carried
+/// back through e2 = e0 x e1, e1 = w/|w| with w = dbar - (dbar.nu) nu, nu = (dbar x tau)/|dbar x tau|,
+/// dbar = b/|b| with b = sum L t, tau = a/|a| with a = sum N' x-, and omega_g times it is added to fm (positions
+/// of E-) and gm, gp (directors). `nu_follows`: nu was computed from this configuration (false: it was kept from
+/// a degenerate one and does not move with the nodes).
+KOKKOS_INLINE_FUNCTION void add_frame_forces(const disc::DgInterfaceRef& I, int g, bool nu_follows,
+                                             const ConormalGeometry& geo, const double e[3][3], const double o[6],
+                                             const double nc[3], const double mc[3], const double dphi_dnu[3],
+                                             double fm[3][3], double gm[2][3], double gp[2][3]) {
+  double P[3][3], r[3];
+  for (int k = 0; k < 3; ++k)
+    for (int c = 0; c < 3; ++c) P[k][c] = -(o[k] * nc[c] + o[3 + k] * mc[c]);
+  for (int c = 0; c < 3; ++c) P[0][c] += dphi_dnu[c];
+  disc::cross3(e[1], P[2], r);  // e2 = e0 x e1
+  for (int c = 0; c < 3; ++c) P[0][c] += r[c];
+  disc::cross3(P[2], e[0], r);
+  for (int c = 0; c < 3; ++c) P[1][c] += r[c];
+  const double* nu = e[0];
+  const double* dbar = geo.dbar;
+  const double dbar_nu = disc::dot3(dbar, nu);
+  double w[3], Pw[3], Pdbar[3];
+  for (int c = 0; c < 3; ++c) w[c] = dbar[c] - dbar_nu * nu[c];
+  const double e1_P1 = disc::dot3(e[1], P[1]), w_length = disc::norm3(w);
+  for (int c = 0; c < 3; ++c) Pw[c] = (P[1][c] - e1_P1 * e[1][c]) / w_length;
+  const double nu_Pw = disc::dot3(nu, Pw);
+  for (int c = 0; c < 3; ++c) Pdbar[c] = Pw[c] - nu_Pw * nu[c];
+  const double omega = I.omega[g], s = disc::edge3_rule.s[g];
+  if (nu_follows) {
+    double Pnu[3], Pc[3], Ptau[3];
+    for (int c = 0; c < 3; ++c) Pnu[c] = P[0][c] - nu_Pw * dbar[c] - dbar_nu * Pw[c];
+    const double nu_Pnu = disc::dot3(nu, Pnu);
+    for (int c = 0; c < 3; ++c) Pc[c] = (Pnu[c] - nu_Pnu * nu[c]) / geo.cross_length;
+    disc::cross3(geo.tau, Pc, r);
+    for (int c = 0; c < 3; ++c) Pdbar[c] += r[c];
+    disc::cross3(Pc, dbar, Ptau);
+    const double tau_Ptau = disc::dot3(geo.tau, Ptau);
+    double dn[3];
+    disc::edge_shape_p2_derivative(s, dn);
+    for (int c = 0; c < 3; ++c) {
+      const double Pa = (Ptau[c] - tau_Ptau * geo.tau[c]) / geo.tau_length;
+      for (int j = 0; j < 3; ++j) fm[j][c] += omega * dn[j] * Pa;
+    }
+  }
+  const disc::EdgePointShapes sh = disc::edge_point_shapes(s, I.s_plus[g]);
+  const double dbar_P = disc::dot3(dbar, Pdbar);
+  for (int c = 0; c < 3; ++c) {
+    const double Pb = (Pdbar[c] - dbar_P * dbar[c]) / geo.dbar_length;
+    for (int j = 0; j < 2; ++j) gm[j][c] += omega * sh.p1[j] * Pb, gp[j][c] += omega * sh.p1_other[j] * Pb;
+  }
 }
 
 /// Cohesive forces of an activated interface (theory.md §9.4, §9.6, §9.9; paper eqs. 55-56): at each edge point the
@@ -146,7 +220,9 @@ KOKKOS_INLINE_FUNCTION double crack_face_contact_forces(const materials::Cohesiv
 /// co-normal (nu[g] keeps the last good one), the tractions n_c, m_c of the cohesive law with delta_max[g]
 /// updated in place, plus those of the crack-face contact when the law has it (p.contact), and the nodal forces
 ///   f^A(-) += omega_g n_c N^A_-,  f^A(+) -= omega_g n_c N^A_+,  g^a(-) += omega_g m_c L^a_-,  g^a(+) -= ...
-/// (internal forces: they resist the opening and the interpenetration). Outputs are overwritten.
+/// plus the forces through the frame (add_frame_forces), so that the nodal forces are the exact gradient of the
+/// stored energy sum_g omega_g (phi_g + U_contact,g) at fixed delta_max (internal forces: they resist the opening
+/// and the interpenetration). Not differentiated: the facing weight of the contact. Outputs are overwritten.
 KOKKOS_INLINE_FUNCTION CohesiveInterfaceResult cohesive_interface_forces(
     const disc::DgInterfaceRef& I, const materials::CohesiveParams& p, const double xm[3][3], const double tm[2][3],
     const double xp[3][3], const double tp[2][3], const double offset[disc::num_edge_points][6],
@@ -157,14 +233,16 @@ KOKKOS_INLINE_FUNCTION CohesiveInterfaceResult cohesive_interface_forces(
   CohesiveInterfaceResult r;
   for (int g = 0; g < disc::num_edge_points; ++g) {
     const disc::EdgePointShapes sh = disc::edge_point_shapes(disc::edge3_rule.s[g], I.s_plus[g]);
-    double jx[3], jt[3], dbar[3], e[3][3], nc[3], mc[3];
-    interface_conormal(I, g, xm, tm, tp, nu[g], dbar);
-    interface_frame(nu[g], dbar, e);
+    double jx[3], jt[3], e[3][3], nc[3], mc[3], dphi_dnu[3];
+    ConormalGeometry geo;
+    const bool nu_follows = interface_conormal(I, g, xm, tm, tp, nu[g], geo);
+    interface_frame(nu[g], geo.dbar, e);
     interface_jumps(I, g, xm, tm, xp, tp, jx, jt);
     for (int k = 0; k < 3; ++k)
       for (int c = 0; c < 3; ++c) jx[c] -= offset[g][k] * e[k][c], jt[c] -= offset[g][3 + k] * e[k][c];
     const materials::CohesiveResult cr = materials::cohesive_tractions(p, jx, jt, nu[g], delta_max[g], nc, mc);
-    const double contact = p.contact ? crack_face_contact_forces(p, 1 / I.inv_he, jx, jt, e, nc, mc) : 0.0;
+    materials::cohesive_conormal_gradient(p, jx, jt, nu[g], delta_max[g], dphi_dnu);
+    const double contact = p.contact ? crack_face_contact_forces(p, 1 / I.inv_he, jx, jt, e, nc, mc, dphi_dnu) : 0.0;
     r.stored += I.omega[g] * (cr.stored + contact);
     r.dissipated += I.omega[g] * cr.dissipated;
     r.separated = r.separated && cr.separated;
@@ -172,6 +250,7 @@ KOKKOS_INLINE_FUNCTION CohesiveInterfaceResult cohesive_interface_forces(
       for (int j = 0; j < 3; ++j) fm[j][c] += I.omega[g] * nc[c] * sh.p2[j], fp[j][c] -= I.omega[g] * nc[c] * sh.p2_other[j];
       for (int j = 0; j < 2; ++j) gm[j][c] += I.omega[g] * mc[c] * sh.p1[j], gp[j][c] -= I.omega[g] * mc[c] * sh.p1_other[j];
     }
+    add_frame_forces(I, g, nu_follows, geo, e, offset[g], nc, mc, dphi_dnu, fm, gm, gp);
   }
   return r;
 }
