@@ -18,7 +18,8 @@ activation of the run (the run lasts t0/rate + --duration t0; the tool checks th
 least 2 t0 before the end, else it says so). The history of the count is kept in the CSV.
 
 usage: fragmentation_study.py SHELLFRAC [--rates 1 3 10 30 100] [--seeds 1 2 3] [--cells 640] [--np 2]
-                              [--distribution Weibull|Uniform] [-o fragmentation] [--mpiexec mpiexec]
+                              [--distribution Weibull|Uniform] [--safety-factor 0.8] [-o fragmentation]
+                              [--mpiexec mpiexec]
 writes <o>.csv (one row per run), <o>_history.csv (count against time for every run) and <o>.png.
 """
 import argparse
@@ -63,9 +64,10 @@ def strength_xml(distribution, reference_length):
 
 
 def ring_xml(radius, length, cells, thickness, speed, end_time, strength="", seed=0, checkpoint_steps=0,
-             fields="fragment_id"):
+             fields="fragment_id", safety_factor=0.8):
     """A ring (a tube of one cell along its axis) of the study's material launched outward at `speed`, every edge
-    breakable; `strength` holds the material's distribution parameters (strength_xml)."""
+    breakable; `strength` holds the material's distribution parameters (strength_xml); the time step is
+    `safety_factor` times the stable estimate (0.8, shellfrac's default)."""
     return f"""<ParameterList name="shellfrac">
   <ParameterList name="Mesh">
     <Parameter name="Source" type="string" value="Cylinder"/>
@@ -103,6 +105,7 @@ def ring_xml(radius, length, cells, thickness, speed, end_time, strength="", see
   </ParameterList>
   <ParameterList name="Time Integration">
     <Parameter name="End Time" type="double" value="{end_time:.17g}"/>
+    <Parameter name="Safety Factor" type="double" value="{safety_factor:.17g}"/>
     <Parameter name="Output Interval" type="double" value="0"/>
   </ParameterList>
   <ParameterList name="Checkpoint">
@@ -116,14 +119,14 @@ def ring_xml(radius, length, cells, thickness, speed, end_time, strength="", see
 """
 
 
-def ring_deck(rate, seed, cells, fragments, distribution, duration):
+def ring_deck(rate, seed, cells, fragments, distribution, duration, safety_factor=0.8):
     """The study's ring at `rate` and its geometry (circumference, end time)."""
     circumference = fragments * zmr(rate) * S0
     radius = circumference / (2 * math.pi)
     edge = circumference / cells
     end_time = T0 / rate + duration * T0
     deck = ring_xml(radius, edge, cells, radius / 50, rate * EPS0 * radius, end_time,
-                    strength_xml(distribution, edge), seed)
+                    strength_xml(distribution, edge), seed, safety_factor=safety_factor)
     return deck, circumference, end_time
 
 
@@ -148,9 +151,9 @@ def count_at_rest(history, cracks, end_time):
     return counts[pick], times[pick], last, long_enough, list(zip(times, counts))
 
 
-def run_ring(shellfrac, mpiexec, np, rate, seed, cells, fragments, distribution, duration, workdir):
-    deck, circumference, end_time = ring_deck(rate, seed, cells, fragments, distribution, duration)
-    sub = os.path.join(workdir, f"ring_r{rate:g}_c{cells}_s{seed}")
+def run_ring(shellfrac, mpiexec, np, rate, seed, cells, fragments, distribution, duration, workdir, safety_factor=0.8):
+    deck, circumference, end_time = ring_deck(rate, seed, cells, fragments, distribution, duration, safety_factor)
+    sub = os.path.join(workdir, f"ring_r{rate:g}_c{cells}_s{seed}_sf{safety_factor:g}")
     os.makedirs(sub, exist_ok=True)
     with open(os.path.join(sub, "ring.xml"), "w") as f:
         f.write(deck)
@@ -165,7 +168,7 @@ def run_ring(shellfrac, mpiexec, np, rate, seed, cells, fragments, distribution,
     k0 = history["kinetic_energy"][0]
     dissipation = history["cohesive_dissipation"][-1]
     worst = max(abs(e) for e in history["energy_balance_error"])
-    row = {"rate": rate, "seed": seed, "cells": cells, "distribution": distribution,
+    row = {"rate": rate, "seed": seed, "cells": cells, "distribution": distribution, "safety_factor": safety_factor,
            "circumference": circumference, "fragments": count, "count_time_t0": t_count / T0,
            "last_activation_t0": last / T0, "run_long_enough": int(long_enough),
            "activated_edges": len(cracks["time"]) if cracks.get("time") else 0,
@@ -221,6 +224,8 @@ def main():
     ap.add_argument("--fragments", type=float, default=40, help="ZMR fragments the ring is sized for")
     ap.add_argument("--duration", type=float, default=6, help="run length after the first activation [t0]")
     ap.add_argument("--distribution", choices=["Weibull", "Uniform"], default="Weibull")
+    ap.add_argument("--safety-factor", type=float, default=0.8,
+                    help="time step / stable estimate (0.8 is shellfrac's default; 0.4 halves the step)")
     ap.add_argument("--np", type=int, default=2)
     ap.add_argument("--mpiexec", default="mpiexec")
     ap.add_argument("-o", "--output", default="fragmentation")
@@ -234,7 +239,7 @@ def main():
             for rate in a.rates:
                 for seed in a.seeds:
                     row, h = run_ring(os.path.abspath(a.shellfrac), a.mpiexec, a.np, rate, seed, cells, a.fragments,
-                                      a.distribution, a.duration, workdir)
+                                      a.distribution, a.duration, workdir, a.safety_factor)
                     rows.append(row)
                     history += h
                     print(f"rate {rate:g} cells {cells} seed {seed}: {row['fragments']:g} fragments, s/s0 "
