@@ -21,6 +21,8 @@ usage: fragmentation_study.py SHELLFRAC [--rates 1 3 10 30 100] [--seeds 1 2 3] 
                               [--distribution Weibull|Uniform] [--safety-factor 0.8] [-o fragmentation]
                               [--mpiexec mpiexec]
 writes <o>.csv (one row per run), <o>_history.csv (count against time for every run) and <o>.png.
+       fragmentation_study.py --combine A.csv B.csv ... [-o fragmentation]
+writes the rows of earlier studies (e.g. two meshes) into one <o>.csv and one figure <o>.png.
 """
 import argparse
 import csv
@@ -215,9 +217,34 @@ def plot(rows, path):
     fig.savefig(path, dpi=110)
 
 
+def write_rows(rows, path):
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+
+
+def read_rows(path):
+    """The rows of a study's CSV, numbers as floats."""
+    def value(text):
+        try:
+            return float(text)
+        except ValueError:
+            return text
+    try:
+        with open(path, newline="") as f:
+            rows = [{k: value(v) for k, v in row.items()} for row in csv.DictReader(f)]
+    except OSError as e:
+        sys.exit(f"fragmentation_study.py: {path}: {e.strerror}")
+    if not rows or "s_over_s0" not in rows[0]:
+        sys.exit(f"fragmentation_study.py: {path}: not a table written by this tool (no s_over_s0 column)")
+    return rows
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("shellfrac")
+    ap.add_argument("shellfrac", nargs="?")
+    ap.add_argument("--combine", nargs="+", metavar="CSV", help="combine the rows of earlier studies; run nothing")
     ap.add_argument("--rates", type=float, nargs="+", default=[1, 3, 10, 30, 100])
     ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
     ap.add_argument("--cells", type=int, nargs="+", default=[640])
@@ -230,6 +257,14 @@ def main():
     ap.add_argument("--mpiexec", default="mpiexec")
     ap.add_argument("-o", "--output", default="fragmentation")
     a = ap.parse_args()
+    if a.combine:
+        rows = [row for path in a.combine for row in read_rows(path)]
+        write_rows(rows, a.output + ".csv")
+        plot(rows, a.output + ".png")
+        print(f"wrote {a.output}.csv, {a.output}.png")
+        return
+    if a.shellfrac is None:
+        ap.error("SHELLFRAC (the program) or --combine is needed")
     if not os.path.isfile(a.shellfrac):
         sys.exit(f"fragmentation_study.py: {a.shellfrac}: no such program")
     workdir = tempfile.mkdtemp(prefix="shellfrac_fragmentation_")
@@ -250,10 +285,7 @@ def main():
                           flush=True)
     finally:
         shutil.rmtree(workdir, ignore_errors=True)
-    with open(a.output + ".csv", "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    write_rows(rows, a.output + ".csv")
     with open(a.output + "_history.csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["rate", "seed", "cells", "time_t0", "fragments"])

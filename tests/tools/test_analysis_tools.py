@@ -9,6 +9,8 @@
   monotonically along the chord, so the length is the chord exactly (the speed |x'(s)| is linear in s, which
   the 3-point Gauss rule integrates exactly); a circular arc of angle 2a through three nodes is a parabola whose
   length has a closed form. Each Exodus TRI6 edge (01, 12, 20) must use its own mid-side node (3, 4, 5).
+* tools/fragmentation_study.py --combine: the rows of two studies (two meshes) come out in one table, in the order
+  given, values unchanged; a table that is not a study's is refused with a line naming it.
 
 usage: test_analysis_tools.py PROJECT_DIR
 """
@@ -21,6 +23,7 @@ import numpy as np
 
 PROJECT = sys.argv.pop(1) if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
 import fracture_summary  # noqa: E402  (tools/ on PYTHONPATH: ctest sets it)
+import fragmentation_study  # noqa: E402
 import scaling  # noqa: E402
 from shellfrac_tools import results_files  # noqa: E402
 
@@ -148,6 +151,46 @@ class SharedEdgeLength(unittest.TestCase):
         minus = tri6([0, 0, 0], [1, 0, 0], [0, 1, 0])
         plus = tri6([5, 0, 0], [6, 0, 0], [5, 1, 0])
         self.assertIsNone(fracture_summary.edge_length(minus, plus))
+
+
+
+class FragmentationStudyTables(unittest.TestCase):
+    def setUp(self):
+        import tempfile
+        self.dir = tempfile.mkdtemp(prefix="shellfrac_study_")
+
+    def tearDown(self):
+        import shutil
+        shutil.rmtree(self.dir, ignore_errors=True)
+
+    def row(self, rate, cells, s):
+        return {"rate": rate, "seed": 1.0, "cells": cells, "distribution": "Weibull", "fragments": 40.0,
+                "run_long_enough": 1.0, "s_over_s0": s, "balance_error_over_dissipation": 3.7e-06}
+
+    def test_two_studies_combine_into_one_table(self):
+        import subprocess
+        coarse, fine = os.path.join(self.dir, "coarse.csv"), os.path.join(self.dir, "fine.csv")
+        fragmentation_study.write_rows([self.row(10.0, 640.0, 0.2492), self.row(100.0, 640.0, 0.04594)], coarse)
+        fragmentation_study.write_rows([self.row(10.0, 1280.0, 0.225)], fine)
+        out = os.path.join(self.dir, "both")
+        r = subprocess.run([sys.executable, fragmentation_study.__file__, "--combine", coarse, fine, "-o", out],
+                           capture_output=True, text=True)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = fragmentation_study.read_rows(out + ".csv")
+        self.assertEqual([(x["cells"], x["rate"], x["s_over_s0"]) for x in rows],
+                         [(640.0, 10.0, 0.2492), (640.0, 100.0, 0.04594), (1280.0, 10.0, 0.225)])
+        self.assertTrue(os.path.getsize(out + ".png") > 0)
+
+    def test_a_table_that_is_not_a_study_is_refused(self):
+        import subprocess
+        other = os.path.join(self.dir, "history.csv")
+        with open(other, "w") as f:
+            f.write("time,kinetic_energy\n0,1\n")
+        r = subprocess.run([sys.executable, fragmentation_study.__file__, "--combine", other, "-o",
+                            os.path.join(self.dir, "x")], capture_output=True, text=True)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn(other, r.stderr)
+        self.assertIn("not a table written by this tool", r.stderr)
 
 
 if __name__ == "__main__":
