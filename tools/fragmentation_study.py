@@ -204,7 +204,7 @@ def plot(rows, path):
             sel = [row for row in rows if row["cells"] == cells and trusted_run(row) == trusted]
             if not sel:
                 continue
-            label = f"shellfrac, {cells} cells per ring" + ("" if trusted else
+            label = f"shellfrac, {cells:g} cells per ring" + ("" if trusted else
                                                           " (balance error > 0.5 % of dissipation or count late)")
             ax.loglog([row["rate"] for row in sel], [row["s_over_s0"] for row in sel], "o",
                       color=colour, mfc=colour if trusted else "none", label=label)
