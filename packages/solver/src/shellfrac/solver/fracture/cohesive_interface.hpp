@@ -142,41 +142,47 @@ KOKKOS_INLINE_FUNCTION double facing_weight(double x) {
 
 /// The crack-face contact at one edge point (theory.md §9.9) on the law's jumps d = [[phi]] - offset, dt =
 /// [[t]] - offset (the same origin as the cohesive law, so that a closed edge is neither pulled nor pushed), in the
-/// interface frame e: materials::crack_face_contact_energy of the normal gap d.nu + z dt.nu, weighted by how much
-/// the faces still face each other (facing_weight of the sliding out of the surface against h, along the edge
-/// against h_e/2, and of |dt| against 1/2, about 30 degrees between the sides' directors). Adds the contact force and
-/// couple (along nu) to nc, mc and returns the energy per unit reference length.
+/// interface frame e: materials::crack_face_contact_energy U_c of the normal gap d.nu + z dt.nu, times the share
+/// of the faces' length still opposite each other, (1 - |d.e2|/h_e)^+ (the sliding along the edge), and
+/// facing_weight of the sliding out of the surface against h and of |dt| against 1/2 (about 30 degrees between the
+/// sides' directors). Adds the gradient of that energy with respect to the jumps to nc, mc (the contact force and
+/// couple along nu, and the overlap's share along e2), its gradient with respect to the frame vectors at fixed
+/// jumps to dphi_de (the facing weights are not differentiated), and returns the energy per unit reference length.
 KOKKOS_INLINE_FUNCTION double crack_face_contact_forces(const materials::CohesiveParams& p, double edge_length,
                                                         const double d[3], const double dt[3], const double e[3][3],
-                                                        double nc[3], double mc[3], double dphi_dnu[3]) {
-  const double facing = facing_weight(disc::dot3(d, e[1]) / p.h) * facing_weight(disc::dot3(d, e[2]) / (0.5 * edge_length)) *
-                        facing_weight(disc::norm3(dt) / 0.5);
+                                                        double nc[3], double mc[3], double dphi_de[3][3]) {
+  const double along = disc::dot3(d, e[2]) / edge_length;
+  const double overlap = 1.0 - std::abs(along);
+  const double others = facing_weight(disc::dot3(d, e[1]) / p.h) * facing_weight(disc::norm3(dt) / 0.5);
+  const double facing = others * (overlap > 0.0 ? overlap : 0.0);
   if (!(facing > 0.0)) return 0.0;
   double fN, mN;
   const double energy = materials::crack_face_contact(p.contact_stiffness, p.h, disc::dot3(d, e[0]), disc::dot3(dt, e[0]), fN, mN);
+  const double g_along = -others * energy * (along < 0.0 ? -1.0 : 1.0) / edge_length;  // d(energy)/d(d.e2)
   for (int c = 0; c < 3; ++c) {
-    nc[c] += facing * fN * e[0][c], mc[c] += facing * mN * e[0][c];
-    dphi_dnu[c] += facing * (fN * d[c] + mN * dt[c]);  // the gaps are d.nu and dt.nu
+    nc[c] += facing * fN * e[0][c] + g_along * e[2][c], mc[c] += facing * mN * e[0][c];
+    dphi_de[0][c] += facing * (fN * d[c] + mN * dt[c]);  // the gaps are d.e0 and dt.e0
+    dphi_de[2][c] += g_along * d[c];                     // the sliding along the edge is d.e2
   }
   return facing * energy;
 }
 
 /// The forces of an activated interface's energy through its frame at edge point g (theory.md §9.4b). The energy
 /// depends on the frame e (the law's jumps are the DG jumps less the offset o held in e, and the law splits them
-/// along nu = e[0]); e is made of the directors of both sides and, through nu, of the positions of E-. With
-/// P_k = dphi/de_k = -(o_k n_c + o_{3+k} m_c), plus dphi/dnu at fixed jumps for k = 0, the gradient is carried
+/// along nu = e[0], the contact measures its gap and overlap in e); e is made of the directors of both sides and,
+/// through nu, of the positions of E-. With P_k = dphi/de_k = -(o_k n_c + o_{3+k} m_c) + dphi_de[k] (the derivative
+/// at fixed jumps), the gradient is carried
 /// back through e2 = e0 x e1, e1 = w/|w| with w = dbar - (dbar.nu) nu, nu = (dbar x tau)/|dbar x tau|,
 /// dbar = b/|b| with b = sum L t, tau = a/|a| with a = sum N' x-, and omega_g times it is added to fm (positions
 /// of E-) and gm, gp (directors). `nu_follows`: nu was computed from this configuration (false: it was kept from
 /// a degenerate one and does not move with the nodes).
 KOKKOS_INLINE_FUNCTION void add_frame_forces(const disc::DgInterfaceRef& I, int g, bool nu_follows,
                                              const ConormalGeometry& geo, const double e[3][3], const double o[6],
-                                             const double nc[3], const double mc[3], const double dphi_dnu[3],
+                                             const double nc[3], const double mc[3], const double dphi_de[3][3],
                                              double fm[3][3], double gm[2][3], double gp[2][3]) {
   double P[3][3], r[3];
   for (int k = 0; k < 3; ++k)
-    for (int c = 0; c < 3; ++c) P[k][c] = -(o[k] * nc[c] + o[3 + k] * mc[c]);
-  for (int c = 0; c < 3; ++c) P[0][c] += dphi_dnu[c];
+    for (int c = 0; c < 3; ++c) P[k][c] = dphi_de[k][c] - (o[k] * nc[c] + o[3 + k] * mc[c]);
   disc::cross3(e[1], P[2], r);  // e2 = e0 x e1
   for (int c = 0; c < 3; ++c) P[0][c] += r[c];
   disc::cross3(P[2], e[0], r);
@@ -222,7 +228,8 @@ KOKKOS_INLINE_FUNCTION void add_frame_forces(const disc::DgInterfaceRef& I, int 
 ///   f^A(-) += omega_g n_c N^A_-,  f^A(+) -= omega_g n_c N^A_+,  g^a(-) += omega_g m_c L^a_-,  g^a(+) -= ...
 /// plus the forces through the frame (add_frame_forces), so that the nodal forces are the exact gradient of the
 /// stored energy sum_g omega_g (phi_g + U_contact,g) at fixed delta_max (internal forces: they resist the opening
-/// and the interpenetration). Not differentiated: the facing weight of the contact. Outputs are overwritten.
+/// and the interpenetration). Not differentiated: the contact's facing weights of the sliding out of the surface
+/// and of the turning. Outputs are overwritten.
 KOKKOS_INLINE_FUNCTION CohesiveInterfaceResult cohesive_interface_forces(
     const disc::DgInterfaceRef& I, const materials::CohesiveParams& p, const double xm[3][3], const double tm[2][3],
     const double xp[3][3], const double tp[2][3], const double offset[disc::num_edge_points][6],
@@ -233,7 +240,7 @@ KOKKOS_INLINE_FUNCTION CohesiveInterfaceResult cohesive_interface_forces(
   CohesiveInterfaceResult r;
   for (int g = 0; g < disc::num_edge_points; ++g) {
     const disc::EdgePointShapes sh = disc::edge_point_shapes(disc::edge3_rule.s[g], I.s_plus[g]);
-    double jx[3], jt[3], e[3][3], nc[3], mc[3], dphi_dnu[3];
+    double jx[3], jt[3], e[3][3], nc[3], mc[3], dphi_de[3][3] = {};
     ConormalGeometry geo;
     const bool nu_follows = interface_conormal(I, g, xm, tm, tp, nu[g], geo);
     interface_frame(nu[g], geo.dbar, e);
@@ -241,8 +248,8 @@ KOKKOS_INLINE_FUNCTION CohesiveInterfaceResult cohesive_interface_forces(
     for (int k = 0; k < 3; ++k)
       for (int c = 0; c < 3; ++c) jx[c] -= offset[g][k] * e[k][c], jt[c] -= offset[g][3 + k] * e[k][c];
     const materials::CohesiveResult cr = materials::cohesive_tractions(p, jx, jt, nu[g], delta_max[g], nc, mc);
-    materials::cohesive_conormal_gradient(p, jx, jt, nu[g], delta_max[g], dphi_dnu);
-    const double contact = p.contact ? crack_face_contact_forces(p, 1 / I.inv_he, jx, jt, e, nc, mc, dphi_dnu) : 0.0;
+    materials::cohesive_conormal_gradient(p, jx, jt, nu[g], delta_max[g], dphi_de[0]);
+    const double contact = p.contact ? crack_face_contact_forces(p, 1 / I.inv_he, jx, jt, e, nc, mc, dphi_de) : 0.0;
     r.stored += I.omega[g] * (cr.stored + contact);
     r.dissipated += I.omega[g] * cr.dissipated;
     r.separated = r.separated && cr.separated;
@@ -250,7 +257,7 @@ KOKKOS_INLINE_FUNCTION CohesiveInterfaceResult cohesive_interface_forces(
       for (int j = 0; j < 3; ++j) fm[j][c] += I.omega[g] * nc[c] * sh.p2[j], fp[j][c] -= I.omega[g] * nc[c] * sh.p2_other[j];
       for (int j = 0; j < 2; ++j) gm[j][c] += I.omega[g] * mc[c] * sh.p1[j], gp[j][c] -= I.omega[g] * mc[c] * sh.p1_other[j];
     }
-    add_frame_forces(I, g, nu_follows, geo, e, offset[g], nc, mc, dphi_dnu, fm, gm, gp);
+    add_frame_forces(I, g, nu_follows, geo, e, offset[g], nc, mc, dphi_de, fm, gm, gp);
   }
   return r;
 }
