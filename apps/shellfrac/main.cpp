@@ -5,7 +5,7 @@
 //   shellfrac --print-valid-parameters [F] documented XML skeleton of every parameter (stdout or file F)
 //   shellfrac --help | --version
 // Exit codes: 0 success, 1 input error (message names the file and parameter), 2 usage error,
-// 3 numerical blow-up (one line) or internal error (all ranks aborted), 4 stopped by SIGTERM (after a checkpoint;
+// 3 numerical blow-up (one line) or internal error (all ranks aborted), 4 stopped by SIGTERM/SIGUSR2 (after a checkpoint;
 // during the set-up: nothing written), 5 Static Relaxation not reached by End Time (results written), 6 a result
 // file could not be written (named in the message).
 #include <mpi.h>
@@ -55,10 +55,11 @@ const char* usage =
     "  <deck>.exo (np = 1) or the per-rank set <deck>.exo.<np>.<rank> (np > 1), and <deck>_history.csv.\n"
     "Run in parallel with: mpirun -np N shellfrac DECK.xml\n"
     "Input reference: docs/input_reference.xml (the output of --print-valid-parameters).\n"
-    "Signals: SIGUSR1 writes a checkpoint and continues; SIGTERM writes a checkpoint and the last results, then\n"
-    "stops with exit code 4 (restart with --restart); during the set-up it stops at once, nothing written.\n"
+    "Signals: SIGUSR1 writes a checkpoint and continues; SIGTERM or SIGUSR2 writes a checkpoint and the last\n"
+    "results, then stops with exit code 4 (restart with --restart); during the set-up it stops at once, nothing\n"
+    "written. Under mpirun send SIGUSR2 to mpirun (it kills the ranks 1 s after forwarding a SIGTERM).\n"
     "Exit codes: 0 done, 1 input error, 2 usage error, 3 numerical blow-up or internal error, 4 stopped by\n"
-    "SIGTERM, 5 static equilibrium (Static Relaxation) not reached by End Time, 6 a result file could not be\n"
+    "SIGTERM or SIGUSR2, 5 static equilibrium (Static Relaxation) not reached by End Time, 6 a result file could not be\n"
     "written (disk full?).\n";
 
 /// The run's plan on rank 0: mesh, partition, time step, mass scaling, regions, then any warnings.
@@ -183,7 +184,7 @@ int run(int argc, char** argv) {
               << " kB per element over all ranks\n";
     for (const auto& f : out.files) std::cout << "  wrote " << f << "\n";
     if (out.stopped_by_signal)
-      std::cout << "  stopped by SIGTERM at step " << std::max(out.restart_step, 0L) + out.steps << "; continue with --restart "
+      std::cout << "  stopped by " << out.stop_signal << " at step " << std::max(out.restart_step, 0L) + out.steps << "; continue with --restart "
                 << out.checkpoint << "\n";
     if (out.relaxed)
       std::cout << "  static equilibrium reached after " << out.steps << " steps: relative residual "

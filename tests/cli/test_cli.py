@@ -175,6 +175,28 @@ class Shellfrac(unittest.TestCase):
         self.assertEqual(r.returncode, 1)
         self.assertIn("long.xml: cannot open the checkpoint", r.stderr)
 
+    def test_sigusr2_to_mpirun_stops_every_rank_after_a_checkpoint(self):
+        # Issue #27: Open MPI's mpirun forwards a SIGTERM to the ranks and SIGKILLs them 1 s later, which cuts a
+        # large run's checkpoint off. It forwards SIGUSR2 and lets the ranks finish: SIGUSR2 is a stop signal
+        # like SIGTERM. Before, SIGUSR2 killed every rank at once (no checkpoint, not exit code 4).
+        deck = self.deck("long.xml", ('name="End Time" type="double" value="8.8e-5"',
+                                      'name="End Time" type="double" value="1.0"'))
+        proc = subprocess.Popen(launch.command([SHELLFRAC, deck], np=2), cwd=self.dir, env=ENV,
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        history = os.path.join(self.dir, "long_history.csv")
+        for _ in range(600):  # wait until it is stepping (a few history rows)
+            if os.path.exists(history) and sum(1 for _ in open(history)) > 5:
+                break
+            time.sleep(0.1)
+        proc.send_signal(signal.SIGUSR2)  # to mpirun, as `kill -USR2 <pid of mpirun>` or a batch system would
+        out, err = proc.communicate(timeout=120)
+        self.assertEqual(proc.returncode, 4, out + err)
+        m = re.search(r"stopped by SIGUSR2 at step (\d+); continue with --restart (\S+)", out)
+        self.assertTrue(m, out + err)
+        self.assertTrue(os.path.exists(os.path.join(self.dir, m.group(2))), os.listdir(self.dir))
+        self.assertFalse([f for f in os.listdir(self.dir) if f.endswith(".tmp")])
+        self.assertNotIn("internal error", out + err)
+
     def test_unstable_time_step_stops_with_a_message(self):
         # Issue #6: a forced time step far above the stable one blows up; the run names the step, time and
         # element, writes its last good state (a copy kept every 50 steps) and exits with 3.

@@ -62,7 +62,8 @@ enum class CheckpointAction { none, write, write_and_stop };
 
 /// What the signals and the wall clock ask for after a step, agreed by all ranks with one reduction: a checkpoint
 /// every Step Interval steps, every Wall Interval minutes (any rank's clock decides) and at SIGUSR1; a checkpoint
-/// and a stop at SIGTERM (a signal seen by any rank counts for all); a progress line when it is due.
+/// and a stop at SIGTERM or SIGUSR2 (a signal seen by any rank counts for all; the reduction's maximum of the
+/// signal numbers puts a stop signal before SIGUSR1); a progress line when it is due.
 class StepEvents {
  public:
   StepEvents(const CheckpointParams& p, ProgressReport& progress, MPI_Comm comm)
@@ -70,6 +71,7 @@ class StepEvents {
   struct Due {
     CheckpointAction checkpoint;
     bool progress;
+    int signal;  ///< the signal acted on (0: none)
   };
   /// After step `step`. Collective.
   Due after_step(long step) {
@@ -80,11 +82,12 @@ class StepEvents {
     SHELLFRAC_REQUIRE(MPI_Allreduce(mine, all, 3, MPI_INT, MPI_MAX, comm_) == MPI_SUCCESS,
                       "MPI_Allreduce of the step events failed");
     const int signal = all[0];
-    Due due{CheckpointAction::none, all[2] != 0};
+    static_assert(SIGTERM > SIGUSR1 && SIGUSR2 > SIGUSR1, "a stop signal must win the maximum over SIGUSR1");
+    Due due{CheckpointAction::none, all[2] != 0, signal};
     if (!((params_.step_interval > 0 && step % params_.step_interval == 0) || signal != 0 || all[1] != 0)) return due;
     last_ = now;
     if (signal == SIGUSR1) clear_checkpoint_signal();
-    due.checkpoint = signal == SIGTERM ? CheckpointAction::write_and_stop : CheckpointAction::write;
+    due.checkpoint = is_stop_signal(signal) ? CheckpointAction::write_and_stop : CheckpointAction::write;
     return due;
   }
 
@@ -389,7 +392,7 @@ RunSummary Simulation::run() {
     if (due.progress) progress.print(dyn.record(), e0);
     if (due.checkpoint != CheckpointAction::none) write_checkpoint();
     if (due.checkpoint == CheckpointAction::write_and_stop) {
-      summary_.stopped_by_signal = true;
+      summary_.stopped_by_signal = true, summary_.stop_signal = signal_name(due.signal);
       break;
     }
     if (dyn.relaxed()) break;  // the static state (Static Relaxation)

@@ -29,7 +29,8 @@ struct RunSummary {
   double wall_seconds = 0;       ///< wall time of the time loop
   std::vector<std::string> files;  ///< output files written (rank 0's view: base names)
   long restart_step = -1;          ///< the step the run restarted from (-1: started at t = 0)
-  bool stopped_by_signal = false;  ///< SIGTERM: a checkpoint was written and the run stopped early
+  bool stopped_by_signal = false;  ///< SIGTERM or SIGUSR2: a checkpoint was written and the run stopped early
+  std::string stop_signal;         ///< ... and that signal's name
   std::string checkpoint;          ///< the last checkpoint the run wrote ("" if none)
   std::vector<MeshSets::RegionSize> regions;  ///< the deck's regions and their sizes
   MassScaling mass_scaling;                   ///< what Target Time Step added (no elements: none)
@@ -45,9 +46,9 @@ struct RunSummary {
 
 class SignalGuard;
 
-/// A run. Construction does all the input work (collective); run() writes the outputs. SIGTERM and SIGUSR1
-/// are caught from the start of construction to the end of the run (stop_signals.hpp): SIGTERM during the
-/// construction stops it at the next phase (StoppedDuringSetUp), nothing written.
+/// A run. Construction does all the input work (collective); run() writes the outputs. SIGTERM, SIGUSR2 and
+/// SIGUSR1 are caught from the start of construction to the end of the run (stop_signals.hpp): SIGTERM or SIGUSR2
+/// during the construction stops it at the next phase (StoppedDuringSetUp), nothing written.
 class Simulation {
  public:
   /// `restart_file` (if not empty) overrides the deck's Checkpoint->Restart From. The checkpoint must have been

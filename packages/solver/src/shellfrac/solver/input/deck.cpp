@@ -232,7 +232,7 @@ Teuchos::RCP<const Teuchos::ParameterList> CheckpointParams::valid_parameters() 
           params::non_negative_double());
   pl->set("File", "", "Name of the checkpoint files (HDF5): a checkpoint at step N is <File without .h5>_step<N>.h5; "
                       "empty = <Output Directory>/<Base Name>_checkpoint.h5. Each file is written atomically and "
-                      "carries checksums; SIGUSR1 writes one, SIGTERM writes one and stops the run (exit code 4)");
+                      "carries checksums; SIGUSR1 writes one, SIGTERM or SIGUSR2 writes one and stops the run (exit code 4)");
   pl->set("Keep", 3, "How many of this run's checkpoints are kept (older ones are removed; the checkpoint a run "
                      "restarted from is never written, replaced or removed)", params::int_range(1, 1000000));
   pl->set("Restart From", "", "Continue from this checkpoint (relative paths: to the deck's directory); empty = "

@@ -121,7 +121,7 @@ RunModel build_run_model(const Deck& deck, MPI_Comm comm) {
   RunModel r;
   auto last = std::chrono::steady_clock::now();
   std::vector<double> seconds;
-  // The end of each phase of the set-up: its time, and a prompt stop if SIGTERM came (nothing is written yet).
+  // The end of each phase of the set-up: its time, and a prompt stop if SIGTERM or SIGUSR2 came (nothing is written yet).
   const auto lap = [&] {
     const auto now = std::chrono::steady_clock::now();
     seconds.push_back(std::chrono::duration<double>(now - last).count());
