@@ -10,6 +10,7 @@ Base deck: the strip of test_reliability.py (16 TRI6, 1265 steps to 2 ms, a chec
 usage: test_output_safety.py SOURCE_DIR SHELLFRAC MPIEXEC [MPIEXEC_PREFLAGS...]
 """
 import os
+import re
 import resource
 import shutil
 import signal
@@ -20,6 +21,7 @@ import time
 import unittest
 
 from cli_common import ENV, DeckTest
+from shellfrac_tools.exodus import ExodusFile
 from test_reliability import BASE, md5, run  # the same arguments: the same program
 
 SHELLFRAC, MPIEXEC = sys.argv[2:4]  # SOURCE_DIR SHELLFRAC MPIEXEC [MPIEXEC_PREFLAGS...], as test_reliability.py
@@ -241,9 +243,28 @@ class OutputSafety(DeckTest):
             self.assertNotIn("MPI_ABORT", err)
             # The file size limit may strike in any part of the frame: the message then names it ("step 28, global
             # variables: writing failed (ex_put_var: ...)").
-            self.assertRegex(lines[0], r"^shellfrac: error: (rank [01]: )?base\.exo(\.2\.[01])?: step [0-9]+"
-                                       r"(, [a-z ]+)?: writing failed \(.*; disk full, quota or file removed\?\)$")
+            m = re.match(r"^shellfrac: error: (rank [01]: )?base\.exo(\.2\.[01])?: step ([0-9]+)(, [a-z ]+)?: "
+                         r"writing failed \(.*; disk full, quota or file removed\?\); the results files now end at "
+                         r"step ([0-9]+)$", lines[0])
+            self.assertTrue(m, lines[0])
+            self.assertEqual(int(m.group(5)), int(m.group(3)) - 1)
             self.assertFalse(os.path.exists(self.path("base.lock")))
+            # Every file of the set ends on the same, whole frame: the frame the limit struck in is cut off on
+            # every rank (before, the other rank kept it whole and the failing rank kept it partial, or not at all).
+            names = ["base.exo"] if np is None else ["base.exo.2.0", "base.exo.2.1"]
+            files = [ExodusFile(self.path(n)) for n in names]
+            try:
+                for f in files:
+                    self.assertEqual(len(f.times()), int(m.group(5)), f.path)
+                    # the history columns of each frame are the frame's: its own time and step
+                    np_time = f.global_variable("time")
+                    self.assertEqual(list(np_time), list(f.times()), f.path)
+                for f in files[1:]:
+                    for name in ("step", "time", "kinetic_energy"):
+                        self.assertEqual(list(f.global_variable(name)), list(files[0].global_variable(name)), name)
+            finally:
+                for f in files:
+                    f.close()
 
     @staticmethod
     def cwd(pid):

@@ -6,7 +6,10 @@
 ///    the file (msg) and Exodus' reason. Positive returns are Exodus warnings and are accepted.
 ///  * SHELLFRAC_EXO_INPUT_CHECK(call, msg): the same, but throws shellfrac::InputError (reading a user's file).
 ///  * exodus::File owns an open file id; files are opened/created with double words and the 64-bit integer API.
+///  * cut_record_count(path, n): a closed netCDF classic file cut back to its first n time steps.
 #include <exodusII.h>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -150,6 +153,31 @@ inline int put_info(int exo, const std::vector<std::string>& lines) {
   std::vector<char*> ptr;
   for (auto& b : buf) ptr.push_back(b.data());
   return ex_put_info(exo, static_cast<int>(ptr.size()), ptr.data());
+}
+
+/// Cuts a closed netCDF classic file (CDF-1, -2 or -5, as create() writes them) back to its first `records` time
+/// steps (records of the unlimited dimension) by lowering the record count in its header (bytes 4..7, or 4..11
+/// for CDF-5; "NetCDF Classic Format Specification"); the bytes of the later records stay in the file but are
+/// no longer part of it. Used when a frame could not be written on every rank. Never raises the count, never
+/// follows a link. Returns false if the file cannot be opened, is not such a file, or the header write fails.
+inline bool cut_record_count(const std::string& path, std::uint64_t records) {
+  const int fd = ::open(path.c_str(), O_RDWR | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) return false;
+  unsigned char head[12] = {};
+  bool ok = ::pread(fd, head, sizeof head, 0) == static_cast<ssize_t>(sizeof head) && head[0] == 'C' &&
+            head[1] == 'D' && head[2] == 'F' && (head[3] == 1 || head[3] == 2 || head[3] == 5);
+  if (ok) {
+    const int n = head[3] == 5 ? 8 : 4;
+    std::uint64_t stored = 0;
+    for (int i = 0; i < n; ++i) stored = (stored << 8) | head[4 + i];
+    const bool streaming = n == 4 && stored == 0xffffffffu;  // the count was never written
+    if (streaming || stored > records) {
+      unsigned char count[8];
+      for (int i = 0; i < n; ++i) count[i] = static_cast<unsigned char>(records >> (8 * (n - 1 - i)));
+      ok = ::pwrite(fd, count, static_cast<std::size_t>(n), 4) == n && ::fsync(fd) == 0;
+    }
+  }
+  return ::close(fd) == 0 && ok;
 }
 
 /// Upper-cased copy (element type names are case-insensitive).

@@ -352,6 +352,15 @@ class FileWriter {
 
   void close() { SHELLFRAC_EXO_CHECK(file_.close(), path_); }
 
+  /// After a frame failed on some rank: closes the file (errors ignored: the disk may be full) and cuts it back
+  /// to the frames before the one being written, so that every file of a per-rank set ends on the same frame.
+  /// Returns the frames kept, or -1 if the file could not be cut (it may then end in a partial frame).
+  int drop_unfinished_frame() {
+    file_.close();
+    steps_ = std::max(steps_ - 1, 0);
+    return exodus::cut_record_count(path_, static_cast<std::uint64_t>(steps_)) ? steps_ : -1;
+  }
+
   std::size_t num_elements() const { return num_elements_; }
   std::size_t num_nodes() const { return num_nodes_; }
   std::size_t num_nodal() const { return num_nodal_; }
@@ -459,10 +468,21 @@ int ExodusResultsWriter::write_step(double time, const NodalComponent& nodal,
   }
   SHELLFRAC_REQUIRE(global.size() == w.num_global(),
                     file_ << ": write_step got " << global.size() << " global values, expected " << w.num_global());
-  // Every rank learns whether every file took the frame: a failed write stops all ranks at once (exit 6).
+  // Every rank learns whether every file took the frame: a failed write stops all ranks at once (exit 6), and
+  // every file of the set is cut back to the frames before this one (a partial frame on one rank and a whole one
+  // on the others would not make one time step).
   int index = 0;
-  parallel::on_all_then_agree([&] { index = w.put_step(time, nodal_variable, element_ptr, global.data()); },
-                              impl_->comm);
+  try {
+    parallel::on_all_then_agree([&] { index = w.put_step(time, nodal_variable, element_ptr, global.data()); },
+                                impl_->comm);
+  } catch (const OutputError& e) {
+    const int kept = w.drop_unfinished_frame();
+    const bool all_cut = parallel::sum(kept < 0 ? 1 : 0, impl_->comm) == 0;
+    throw OutputError(std::string(e.what()) +
+                      (all_cut ? "; the results files now end at step " + std::to_string(kept)
+                               : std::string("; a results file could not be cut back to the steps before and may "
+                                             "end in a partial one")));
+  }
   return index;
 }
 void write_results(const ExodusResults& results, const std::string& path) {
