@@ -233,12 +233,13 @@ class Reliability(DeckTest):
 
     # --- meshes and time steps ----------------------------------------------------------------------------
 
-    def write_msh(self, name, nodes, triangles, element_type):
+    def write_msh(self, name, nodes, triangles, element_type, first_tag=1):
         lines = ["$MeshFormat", "2.2 0 8", "$EndMeshFormat", "$PhysicalNames", "1", '2 1 "plate"',
                  "$EndPhysicalNames", "$Nodes", str(len(nodes))]
         lines += ["%d %r %r 0" % (i + 1, x, y) for i, (x, y) in enumerate(nodes)]
         lines += ["$EndNodes", "$Elements", str(len(triangles))]
-        lines += ["%d %d 2 1 1 %s" % (i + 1, element_type, " ".join(str(n) for n in t)) for i, t in enumerate(triangles)]
+        lines += ["%d %d 2 1 1 %s" % (i + first_tag, element_type, " ".join(str(n) for n in t))
+                  for i, t in enumerate(triangles)]
         lines += ["$EndElements"]
         with open(self.path(name), "w") as f:
             f.write("\n".join(lines) + "\n")
@@ -264,6 +265,16 @@ class Reliability(DeckTest):
             self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
             self.assertRegex(r.stderr, r"folded.msh: element 1 is folded: at one of its quadrature points the area "
                                        r"Jacobian is -[0-9.]+ times that of its vertex triangle")
+        # The same mesh with the triangles tagged 101 and 102 in the file: the message names the file's tag, and the
+        # element's number in the results (on 2 ranks the owner of the element tells the others its tag). It named
+        # the position only ("element 1"), which the user's mesher does not show.
+        self.write_msh("tagged.msh", nodes, [(1, 2, 3, 5, 6, 9), (1, 3, 4, 9, 7, 8)], 9, first_tag=101)
+        deck = self.file_deck("tagged.msh")
+        for np in (None, 2):
+            r = run(["--check", deck], self.dir, np=np)
+            self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
+            self.assertRegex(r.stderr, r"tagged.msh: element 101 \(1 in the results\) is folded: at one of its "
+                                       r"quadrature points")
 
     def test_a_sliver_that_sets_the_time_step_is_reported(self):
         # A 4 x 2 grid of unit squares (TRI3, promoted to TRI6), 0.1 m thick, whose interior node (2, 1) is moved

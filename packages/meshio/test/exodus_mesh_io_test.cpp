@@ -256,7 +256,31 @@ TEST(ExodusMeshIo, DuplicateOrNonPositiveIdsInTheIdMapsAreRefused) {
   EXPECT_EQ(input_error([] { read_exodus_mesh("exodus_mesh_io_node_ids.exo"); }),
             "exodus_mesh_io_node_ids.exo: node 3 has the id 0 in the file's node id map; ids must be positive");
   with_map("exodus_mesh_io_good_ids.exo", EX_ELEM_MAP, {1001, 7});
-  EXPECT_EQ(read_exodus_mesh("exodus_mesh_io_good_ids.exo").num_elements(), 2);
+  const auto m = read_exodus_mesh("exodus_mesh_io_good_ids.exo");
+  EXPECT_EQ(m.num_elements(), 2);
+  EXPECT_EQ(m.element_ids.ids, (std::vector<std::int64_t>{1001, 7}));
+  EXPECT_TRUE(m.node_ids.empty());  // no node map: the positions
+  EXPECT_EQ(m.element_ids.element(0), "element 1001 (1 in the results)");
+  with_map("exodus_mesh_io_identity_ids.exo", EX_ELEM_MAP, {1, 2});
+  EXPECT_TRUE(read_exodus_mesh("exodus_mesh_io_identity_ids.exo").element_ids.empty());
+}
+
+// Issue: messages named elements and nodes by their position in the file while the file's tools (its id maps)
+// name them by id. Element 2 (id 7) uses its third node (id 30) twice: the message names both by their ids, and
+// the element by its number in the results too.
+TEST(ExodusMeshIo, MessagesNameElementsAndNodesByTheFilesIds) {
+  const std::string path = "exodus_mesh_io_named_ids.exo";
+  write_raw(path, 3, {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{1, "TRISHELL3", 3, {1, 2, 3, 1, 3, 3}}});
+  int cpu = 8, io = 8;
+  float version = 0;
+  const int exo = ex_open(path.c_str(), EX_WRITE, &cpu, &io, &version);
+  ASSERT_GE(exo, 0);
+  const std::vector<int> elements = {1001, 7}, nodes = {10, 20, 30, 40};
+  ASSERT_GE(ex_put_id_map(exo, EX_ELEM_MAP, elements.data()), 0);
+  ASSERT_GE(ex_put_id_map(exo, EX_NODE_MAP, nodes.data()), 0);
+  ASSERT_EQ(ex_close(exo), 0);
+  EXPECT_EQ(input_error([&] { read_exodus_mesh(path); }),
+            path + ": element 7 (2 in the results) uses node 30 twice");
 }
 
 // Fuzzing regressions (docs/hostile_input.md). Files are crafted byte by byte or patched from a written mesh.

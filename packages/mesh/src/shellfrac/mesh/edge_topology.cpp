@@ -67,9 +67,19 @@ EdgeTopology build_edge_topology(const SerialMesh& mesh, NonManifoldPolicy polic
       ++t.num_non_manifold_edges;
       if (policy == NonManifoldPolicy::Error) {
         std::ostringstream os;
-        os << mesh.source << ": edge between nodes " << uses[first].a + 1 << " and " << uses[first].b + 1
+        // Named by the file's ids (mesh::FileIds), the elements also by their numbers in the results.
+        const auto& node_ids = mesh.node_ids.ids;
+        const auto& element_ids = mesh.element_ids.ids;
+        const auto node_id = [&](GlobalId n) { return n < GlobalId(node_ids.size()) ? node_ids[n] : n + 1; };
+        os << mesh.source << ": edge between nodes " << node_id(uses[first].a) << " and " << node_id(uses[first].b)
            << " is shared by " << count << " elements (";
-        for (std::size_t u = first; u < last; ++u) os << (u > first ? ", " : "") << uses[u].element + 1;
+        for (std::size_t u = first; u < last; ++u)
+          os << (u > first ? ", " : "") << (element_ids.empty() ? uses[u].element + 1 : element_ids[uses[u].element]);
+        if (!element_ids.empty()) {
+          os << " in the mesh file; ";
+          for (std::size_t u = first; u < last; ++u) os << (u > first ? ", " : "") << uses[u].element + 1;
+          os << " in the results";
+        }
         os << "): a T-joint or non-manifold edge. Set 'Mesh->Non-Manifold Edges' to 'Star' or 'Free' to accept it";
         throw InputError(os.str());
       }

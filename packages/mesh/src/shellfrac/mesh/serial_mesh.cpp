@@ -122,6 +122,21 @@ void refine_sets(SerialMesh& mesh) {
 
 }  // namespace
 
+std::string element_label(GlobalId e, std::int64_t file_id) {
+  if (file_id == e + 1) return "element " + std::to_string(e + 1);
+  return "element " + std::to_string(file_id) + " (" + std::to_string(e + 1) + " in the results)";
+}
+
+std::string FileIds::element(GlobalId e) const {
+  return element_label(e, ids.empty() ? e + 1 : ids[static_cast<std::size_t>(e)]);
+}
+
+std::string FileIds::node(GlobalId n) const {
+  if (ids.empty()) return "node " + std::to_string(n + 1);
+  if (n >= static_cast<GlobalId>(ids.size())) return "mid-side node " + std::to_string(n + 1) + " (added by shellfrac)";
+  return "node " + std::to_string(ids[static_cast<std::size_t>(n)]);
+}
+
 void check_mesh(const SerialMesh& mesh) {
   const std::string& src = mesh.source;
   SHELLFRAC_INPUT_REQUIRE(mesh.nodes_per_element == 3 || mesh.nodes_per_element == 6,
@@ -132,6 +147,14 @@ void check_mesh(const SerialMesh& mesh) {
                           src << ": connectivity has " << mesh.connectivity.size() << " entries, expected "
                               << ne * mesh.nodes_per_element);
   SHELLFRAC_INPUT_REQUIRE(!mesh.blocks.empty(), src << ": the mesh has no element block");
+  SHELLFRAC_INPUT_REQUIRE(mesh.element_ids.empty() || GlobalId(mesh.element_ids.ids.size()) == ne,
+                          src << ": the element id map has " << mesh.element_ids.ids.size() << " entries for " << ne
+                              << " elements");
+  SHELLFRAC_INPUT_REQUIRE(GlobalId(mesh.node_ids.ids.size()) <= nn,
+                          src << ": the node id map has " << mesh.node_ids.ids.size() << " entries for " << nn
+                              << " nodes");
+  const auto& element = mesh.element_ids;
+  const auto& node = mesh.node_ids;
   check_ids_and_names(mesh.blocks, "element block", src);
   check_ids_and_names(mesh.node_sets, "node set", src);
   check_ids_and_names(mesh.side_sets, "side set", src);
@@ -142,19 +165,21 @@ void check_mesh(const SerialMesh& mesh) {
   for (GlobalId e = 0; e < ne; ++e) {
     const int b = mesh.element_block[e];
     SHELLFRAC_INPUT_REQUIRE(b >= 0 && b < static_cast<int>(mesh.blocks.size()),
-                            src << ": element " << e + 1 << " has no valid block");
+                            src << ": " << element.element(e) << " has no valid block");
     for (int a = 0; a < mesh.nodes_per_element; ++a) {
       const GlobalId n = mesh.node(e, a);
-      SHELLFRAC_INPUT_REQUIRE(n >= 0 && n < nn, src << ": element " << e + 1 << " refers to node " << n + 1
-                                                    << ", but the mesh has " << nn << " nodes");
+      SHELLFRAC_INPUT_REQUIRE(n >= 0 && n < nn, src << ": " << element.element(e) << " refers to node " << n + 1
+                                                    << " (a position in the file), but the mesh has " << nn
+                                                    << " nodes");
       for (int c = 0; c < a; ++c)
-        SHELLFRAC_INPUT_REQUIRE(mesh.node(e, c) != n, src << ": element " << e + 1 << " uses node " << n + 1 << " twice");
+        SHELLFRAC_INPUT_REQUIRE(mesh.node(e, c) != n,
+                                src << ": " << element.element(e) << " uses " << node.node(n) << " twice");
     }
     // Zero-area (collinear) triangles have no normal and no stable time step.
     const Vec3 &p = mesh.coords[mesh.node(e, 0)], &q = mesh.coords[mesh.node(e, 1)], &r = mesh.coords[mesh.node(e, 2)];
     const double h2 = std::max({norm2(sub(q, p)), norm2(sub(r, q)), norm2(sub(p, r))});
     SHELLFRAC_INPUT_REQUIRE(vertex_area(mesh, e) > 1e-12 * h2,
-                            src << ": element " << e + 1 << " is degenerate (its vertices are collinear)");
+                            src << ": " << element.element(e) << " is degenerate (its vertices are collinear)");
   }
   for (const auto& s : mesh.node_sets) check_sorted_in_range(s.nodes, nn, "node set", s.name, "node", src);
   for (const auto& s : mesh.element_sets) check_sorted_in_range(s.elements, ne, "element set", s.name, "element", src);
@@ -190,6 +215,8 @@ std::vector<char> pack(const SerialMesh& m) {
   w.put(m.surface.axis_direction);
   w.put(m.surface.radius);
   w.put_string(m.source);
+  w.put_vector(m.element_ids.ids);
+  w.put_vector(m.node_ids.ids);
   return std::move(w.buffer());
 }
 
@@ -218,6 +245,8 @@ SerialMesh unpack(const std::vector<char>& buffer) {
   m.surface.axis_direction = r.get<Vec3>();
   m.surface.radius = r.get<double>();
   m.source = r.get_string();
+  m.element_ids.ids = r.get_vector<std::int64_t>();
+  m.node_ids.ids = r.get_vector<std::int64_t>();
   return m;
 }
 
@@ -250,6 +279,7 @@ void promote_to_p2(SerialMesh& mesh) {
 }
 
 void refine_uniform(SerialMesh& mesh) {
+  mesh.element_ids.ids.clear(), mesh.node_ids.ids.clear();  // new elements and nodes: numbered by position
   const GlobalId ne = mesh.num_elements();
   const int npe = mesh.nodes_per_element;
   const GlobalId nn0 = mesh.num_nodes();

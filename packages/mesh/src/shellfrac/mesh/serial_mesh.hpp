@@ -5,6 +5,7 @@
 /// done when the mesh is distributed (distributed_mesh.hpp). All indices are 0-based.
 #include <mpi.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,25 @@ struct ExactSurface {
   Vec3 project(const Vec3& x) const;
 };
 
+/// The ids a mesh file gives its elements or its nodes (Exodus id maps), by shellfrac's number (the 0-based
+/// position in the file, which is the global id). Empty when they are the positions 1..n: generated meshes, Gmsh
+/// files, Exodus files without a map or with the identity map, and after a uniform refinement (new entities).
+/// shellfrac numbers results and tables by position (the results' element id is global id + 1); messages name
+/// an element or node by the file's id, and an element also by its number in the results when the two differ.
+struct FileIds {
+  std::vector<std::int64_t> ids;
+  bool empty() const { return ids.empty(); }
+  /// "element 1001 (7 in the results)", or "element 7" when the file numbers by position.
+  std::string element(GlobalId e) const;
+  /// "node 2001"; "node 57" without ids; a node added by shellfrac (a mid-side node of a TRI3 file promoted to
+  /// TRI6) has no id in the file: "mid-side node 57 (added by shellfrac)".
+  std::string node(GlobalId n) const;
+};
+
+/// "element 1001 (7 in the results)" for element global id e whose id in the mesh file is file_id; "element 7"
+/// when file_id is e + 1.
+std::string element_label(GlobalId e, std::int64_t file_id);
+
 /// Conforming triangle mesh: TRI3 (nodes_per_element = 3) or TRI6 (6; node order of types.hpp).
 struct SerialMesh {
   int nodes_per_element = 3;
@@ -64,6 +84,7 @@ struct SerialMesh {
   std::vector<ElementSet> element_sets;
   ExactSurface surface;
   std::string source;  ///< file name or generator description, for messages
+  FileIds element_ids, node_ids;  ///< the file's own ids, for messages (empty: the positions)
 
   GlobalId num_elements() const { return static_cast<GlobalId>(element_block.size()); }
   GlobalId num_nodes() const { return static_cast<GlobalId>(coords.size()); }
@@ -87,10 +108,12 @@ void broadcast(SerialMesh& mesh, int root = 0, MPI_Comm comm = MPI_COMM_WORLD);
 /// Sets: side sets and element sets are unchanged; a new node joins a node set when both end vertices of
 /// its edge are members and the edge is on the boundary, or is interior with no adjacent triangle whose
 /// third vertex is also a member (so node sets describing lines keep their mid-side nodes, while the
-/// diagonal of a corner triangle does not join a boundary set). No-op for a TRI6 mesh.
+/// diagonal of a corner triangle does not join a boundary set). The new nodes have no id of the file
+/// (FileIds::node). No-op for a TRI6 mesh.
 void promote_to_p2(SerialMesh& mesh);
 
 /// Uniform refinement: each triangle -> 4 (corner children 0,1,2 at vertices 1,2,3, then the centre one).
+/// The children are new elements: the file's ids are dropped (positions from then on).
 /// TRI6 children take their new mid-side nodes on the parent's P2 map (then projected on mesh.surface);
 /// TRI3 children take the projected edge midpoints. Blocks, element sets, side sets (each edge -> its two
 /// halves) and node sets (rule of promote_to_p2) follow.

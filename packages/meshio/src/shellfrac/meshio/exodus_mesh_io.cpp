@@ -388,7 +388,8 @@ mesh::SerialMesh read_exodus_impl(const std::string& path) {
   m.source = path;
 
   // The file's element and node ids (its id maps; 1..n without them). shellfrac numbers elements and nodes by their
-  // position in the file, so two entities with one id would be two things under one name: refused.
+  // position in the file, so two entities with one id would be two things under one name: refused. Messages name
+  // them by these ids (mesh::FileIds), kept when they are not the positions.
   for (const auto& [type, count, what] : {std::tuple<ex_entity_type, std::int64_t, const char*>{EX_ELEM_MAP, num_elem,
                                                                                                "element"},
                                           std::tuple<ex_entity_type, std::int64_t, const char*>{EX_NODE_MAP, num_nodes,
@@ -409,6 +410,9 @@ mesh::SerialMesh read_exodus_impl(const std::string& path) {
                               path << ": the " << what << " id " << sorted[k].first << " is given to " << what << "s "
                                    << sorted[k - 1].second + 1 << " and " << sorted[k].second + 1
                                    << " (positions in the file) by its " << what << " id map; ids must be unique");
+    bool positions = true;
+    for (std::size_t i = 0; i < ids.size() && positions; ++i) positions = ids[i] == static_cast<std::int64_t>(i) + 1;
+    if (!positions) (type == EX_ELEM_MAP ? m.element_ids : m.node_ids).ids = std::move(ids);
   }
 
   // Coordinates.

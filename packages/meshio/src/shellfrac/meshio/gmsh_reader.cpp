@@ -174,6 +174,16 @@ class MeshAssembly {
                                                      << t->tag << " have different orders (mixed 3- and 6-node triangles)");
     m_.source = path_;
     m_.nodes_per_element = type == type_tri6 ? num_nodes_tri6 : num_nodes_tri3;
+    // Messages name triangles by their Gmsh tags (mesh::FileIds), kept when they are not the positions.
+    for (std::size_t e = 0; e < triangles_.size(); ++e) m_.element_ids.ids.push_back(triangles_[e]->tag);
+    if (is_positions(m_.element_ids.ids)) m_.element_ids.ids.clear();
+  }
+
+  /// Whether ids[i] == i + 1 for every i (a file that numbers by position).
+  static bool is_positions(const std::vector<std::int64_t>& ids) {
+    for (std::size_t i = 0; i < ids.size(); ++i)
+      if (ids[i] != static_cast<std::int64_t>(i) + 1) return false;
+    return true;
   }
 
   /// Connectivity in raw node indices first; nodes not used by a triangle are dropped afterwards.
@@ -198,7 +208,9 @@ class MeshAssembly {
       if (!used[i]) continue;
       new_index_[i] = static_cast<GlobalId>(m_.coords.size());
       m_.coords.push_back(nodes_[i].x);
+      m_.node_ids.ids.push_back(nodes_[i].tag);
     }
+    if (is_positions(m_.node_ids.ids)) m_.node_ids.ids.clear();
     m_.connectivity.reserve(raw_conn.size());
     for (std::size_t i : raw_conn) m_.connectivity.push_back(new_index_[i]);
   }

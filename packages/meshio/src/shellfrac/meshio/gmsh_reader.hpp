@@ -11,7 +11,8 @@
 ///    and a node set (all nodes of the lines, mid-side nodes included), both with the group's name and tag.
 ///  * Physical points (dim 0) -> node sets.
 ///  * Nodes are renumbered 0.. in increasing Gmsh tag order; unused nodes are dropped. Triangles are numbered
-///    in increasing element tag order.
+///    in increasing element tag order. The tags are kept for messages (mesh.element_ids, mesh.node_ids) when
+///    they are not the positions 1..n.
 ///  * Gmsh numbers physical groups per dimension, so a curve and a point may share a tag: the later set gets
 ///    the next free id (and "_<id>" appended to a clashing name). Unnamed groups are "curve_<tag>",
 ///    "point_<tag>", "block_<tag>".

@@ -271,7 +271,7 @@ std::string Simulation::element_description(GlobalId element, int block) const {
   const auto& section = deck_.blocks.at(name);
   const auto& m = deck_.materials.at(section.material);
   std::ostringstream os;
-  os << "element " << element + 1 << " of block '" << name << "' (material '" << section.material
+  os << model_.dynamics->model().element_name(element) << " of block '" << name << "' (material '" << section.material
      << "': Young's Modulus " << m.youngs_modulus << ", Density " << m.density << "; Thickness " << section.thickness
      << ")";
   return os.str();

@@ -70,7 +70,9 @@ struct ShellDynamics::Impl {
   // it (the run releases it after the set-up).
   Impl(const MeshSets& sets, const mesh::SerialMesh& mesh, const decomposition::DistributedMesh& dm, const Deck& deck)
       : file(deck.file),
-        model(dm, {deck.file, deck.mesh.file.empty() ? deck.file : deck.mesh.file, deck.discretization, deck.time},
+        model(dm,
+              {deck.file, deck.mesh.file.empty() ? deck.file : deck.mesh.file, deck.discretization, deck.time,
+               mesh.element_ids},
               block_sections(deck.blocks, deck.materials, block_names(mesh))),
         dt(choose_time_step(deck.time, model.stable_dt, deck.file)),
         fracture(deck.fracture, sets, model),

@@ -80,15 +80,16 @@ class MassScalingTally {
 };
 
 /// InputError if the mass scaling adds more than Maximum Added Mass Fraction of the mass (unless forced).
-void check_added_mass(const ModelParams& params, const MassScaling& ms) {
+/// Collective (all ranks decide alike).
+void check_added_mass(const ModelParams& params, const MassScaling& ms, const ShellModel& model) {
   const TimeParams& time = params.time;
   if (ms.elements == 0 || time.force_mass_scaling) return;
   const double fraction = ms.added_mass / ms.physical_mass;
   SHELLFRAC_INPUT_REQUIRE(fraction <= time.max_added_mass_fraction,
                           params.deck_file << ": 'Time Integration->Target Time Step' = " << time.target_time_step
                                     << " adds " << fraction * 100 << " % of the mass (" << ms.elements
-                                    << " elements scaled, the largest factor " << ms.max_factor << " at element "
-                                    << ms.max_element + 1 << "), more than 'Maximum Added Mass Fraction' = "
+                                    << " elements scaled, the largest factor " << ms.max_factor << " at "
+                                    << model.element_name(ms.max_element) << "), more than 'Maximum Added Mass Fraction' = "
                                     << time.max_added_mass_fraction
                                     << "; lower the target, remesh the small elements, or raise the maximum (or "
                                        "set 'Force Mass Scaling')");
@@ -97,7 +98,8 @@ void check_added_mass(const ModelParams& params, const MassScaling& ms) {
 /// InputError naming the element when the P2 map of an element is folded (orientation ratio <= 1e-3 at an area
 /// point: a mid-side node far outside its triangle; docs/theory.md §1.4). The smallest such element id on any
 /// rank is named, with its worst ratio. Collective.
-void check_not_folded(const decomposition::DistributedMesh& dm, const std::string& mesh_name) {
+void check_not_folded(const ShellModel& model, const std::string& mesh_name) {
+  const auto& dm = model.dm;
   constexpr double folded = 1e-3;
   const double none = std::numeric_limits<double>::max();
   double worst = none, first = none;  // the smallest folded element id (as a double: exact below 2^53)
@@ -112,7 +114,7 @@ void check_not_folded(const decomposition::DistributedMesh& dm, const std::strin
   const double bad = -parallel::max(-first, dm.comm());
   if (bad == none) return;
   const double ratio = -parallel::max(-(first == bad ? worst : none), dm.comm());
-  SHELLFRAC_INPUT_REQUIRE(false, mesh_name << ": element " << GlobalId(bad) + 1 << " is folded: at one of its quadrature "
+  SHELLFRAC_INPUT_REQUIRE(false, mesh_name << ": " << model.element_name(GlobalId(bad)) << " is folded: at one of its quadrature "
                                            << "points the area Jacobian is " << ratio << " times that of its vertex "
                                            << "triangle (it must be positive; a mid-side node lies far outside the "
                                            << "triangle?); fix the mesh");
@@ -131,11 +133,25 @@ std::vector<BlockSection> block_sections(const std::map<std::string, materials::
   return out;
 }
 
+std::string ShellModel::element_name(GlobalId gid) const {
+  if (!file_ids) return mesh::element_label(gid, gid + 1);
+  // The rank that owns it knows its file id; the others contribute 0 (file ids are positive).
+  std::int64_t mine = 0, id = 0;
+  for (LocalId le = 0; le < owned && mine == 0; ++le)
+    if (dm.element_gid(le) == gid) mine = owned_file_ids[static_cast<std::size_t>(le)];
+  SHELLFRAC_REQUIRE(MPI_Allreduce(&mine, &id, 1, MPI_INT64_T, MPI_MAX, dm.comm()) == MPI_SUCCESS,
+                    "MPI_Allreduce of an element's file id failed");
+  return mesh::element_label(gid, id > 0 ? id : gid + 1);
+}
+
 ShellModel::ShellModel(const decomposition::DistributedMesh& d, const ModelParams& params,
                        const std::vector<BlockSection>& s)
-    : dm(d), owned(d.num_owned()), overlap(d.num_overlap()), sections(s) {
+    : dm(d), owned(d.num_owned()), overlap(d.num_overlap()), sections(s), file_ids(!params.element_ids.empty()) {
   SHELLFRAC_REQUIRE(dm.nodes_per_element() == 6, "the DG shell needs TRI6 elements");
-  check_not_folded(dm, params.mesh_label);
+  if (file_ids)
+    for (LocalId le = 0; le < owned; ++le)
+      owned_file_ids.push_back(params.element_ids.ids.at(static_cast<std::size_t>(dm.element_gid(le))));
+  check_not_folded(*this, params.mesh_label);
   X = PositionRowsView(dm.node_coords_data(), overlap);
   // Point laws of the blocks.
   block_elastic.resize(sections.size()), block_plastic.resize(sections.size()), block_is_plastic.assign(sections.size(), 0);
@@ -190,7 +206,7 @@ ShellModel::ShellModel(const decomposition::DistributedMesh& d, const ModelParam
   stable_dt = -parallel::max(-stable_dt, dm.comm());  // global minimum (exact, rank-count independent)
   mass_scaling = scaling.global_result(dm);
   time_step_survey = steps.global_result(dm);
-  check_added_mass(params, mass_scaling);
+  check_added_mass(params, mass_scaling, *this);
   build_interfaces(params.discretization);
 }
 

@@ -14,6 +14,7 @@
 #include "shellfrac/materials/elastic_resultant.hpp"
 #include "shellfrac/materials/material_params.hpp"
 #include "shellfrac/materials/resultant_plasticity.hpp"
+#include "shellfrac/mesh/serial_mesh.hpp"
 #include "shellfrac/solver/input/dynamics_params.hpp"
 #include "shellfrac/solver/model/mass_scaling.hpp"
 #include "shellfrac/solver/model/shell_state.hpp"
@@ -32,6 +33,7 @@ struct ModelParams {
   std::string mesh_label;  ///< named in messages about the mesh: its file, or the deck when the deck generates it
   DiscretizationParams discretization;
   TimeParams time;
+  mesh::FileIds element_ids;  ///< the mesh file's element ids, for messages (empty: the positions)
 };
 
 /// The section of a mesh block: its thickness and its material, as the deck gives them.
@@ -92,6 +94,13 @@ struct ShellModel {
   std::vector<double> interface_beta_x, interface_beta_t;  ///< penalty constants (mean of the two sides)
   /// Per owned element: its interfaces (local interface, side), in increasing interface id.
   IncidentInterfaces incident;
+  /// Per owned element: its id in the mesh file (mesh::FileIds); empty when the file numbers by position.
+  std::vector<std::int64_t> owned_file_ids;
+  bool file_ids = false;  ///< the mesh file has its own element ids (the same on every rank)
+
+  /// Element `gid` as messages name it: its id in the mesh file, and its number in the results when the two
+  /// differ (mesh::element_label). The same on every rank; collective when the file has its own ids.
+  std::string element_name(GlobalId gid) const;
 
   /// The elastic section of owned element le, and whether its material is plastic.
   const materials::ElasticSection& elastic(LocalId le) const;

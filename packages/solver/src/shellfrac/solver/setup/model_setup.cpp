@@ -46,8 +46,8 @@ void check_deck_against_mesh(const Deck& deck, const mesh::SerialMesh& m) {
 void check_orientation(const mesh::SerialMesh& m, const mesh::EdgeTopology& topo) {
   for (const auto& f : topo.interfaces)
     SHELLFRAC_INPUT_REQUIRE(!f.same_orientation || f.non_manifold,
-                            m.source << ": elements " << f.minus.element + 1 << " and " << f.plus.element + 1
-                                     << " have opposite orientations (normals); orient the surface consistently "
+                            m.source << ": " << m.element_ids.element(f.minus.element) << " and "
+                                     << m.element_ids.element(f.plus.element) << " have opposite orientations (normals); orient the surface consistently "
                                         "(e.g. Gmsh: ReorientMesh / Reverse Surface)");
 }
 

@@ -381,7 +381,8 @@ void CentralDifference::book_plastic_work(ShellState& s) const {
     *s.plastic_work.at(le) += work[le];
   }
   const double worst = parallel::max(bad >= 0 ? double(bad) : -1.0, model_.dm.comm());
-  SHELLFRAC_REQUIRE(worst < 0, "the plastic return map did not converge in element " << GlobalId(worst) + 1
+  SHELLFRAC_REQUIRE(worst < 0, "the plastic return map did not converge in "
+                                   << model_.element_name(GlobalId(worst))
                                    << " at step " << s.step << ", time " << s.time
                                    << " (docs/theory.md §4.3; a non-finite or extreme strain?)");
 }
@@ -453,7 +454,7 @@ void CentralDifference::check_finite(const ShellState& s) const {
   if (worst >= 0) {
     std::ostringstream os;
     os << "numerical blow-up at step " << s.step << ", time " << s.time
-       << ": non-finite position or force in element " << GlobalId(worst) + 1
+       << ": non-finite position or force in " << model_.element_name(GlobalId(worst))
        << " (time step too large or unstable input?)";
     throw NumericalError(os.str());  // on every rank (the reduction above)
   }
