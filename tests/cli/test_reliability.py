@@ -257,24 +257,19 @@ class Reliability(DeckTest):
         # Two TRI6 on the unit square; the mid-side node of element 1's first edge is moved through the element,
         # beyond its opposite vertex: the area Jacobian is negative at every quadrature point (it ran with exit 0,
         # kinetic energy 30.5 J instead of 8.9 J).
-        nodes = [(0, 0), (1, 0), (1, 1), (0, 1), (3.5, 3.0), (1, 0.5), (0.5, 1), (0, 0.5), (0.5, 0.5)]
-        self.write_msh("folded.msh", nodes, [(1, 2, 3, 5, 6, 9), (1, 3, 4, 9, 7, 8)], 9)
-        deck = self.file_deck("folded.msh")
-        for np in (None, 2):
-            r = run(["--check", deck], self.dir, np=np)
-            self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
-            self.assertRegex(r.stderr, r"folded.msh: element 1 is folded: at one of its quadrature points the area "
-                                       r"Jacobian is -[0-9.]+ times that of its vertex triangle")
         # The same mesh with the triangles tagged 101 and 102 in the file: the message names the file's tag, and the
         # element's number in the results (on 2 ranks the owner of the element tells the others its tag). It named
         # the position only ("element 1"), which the user's mesher does not show.
-        self.write_msh("tagged.msh", nodes, [(1, 2, 3, 5, 6, 9), (1, 3, 4, 9, 7, 8)], 9, first_tag=101)
-        deck = self.file_deck("tagged.msh")
-        for np in (None, 2):
-            r = run(["--check", deck], self.dir, np=np)
-            self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
-            self.assertRegex(r.stderr, r"tagged.msh: element 101 \(1 in the results\) is folded: at one of its "
-                                       r"quadrature points")
+        nodes = [(0, 0), (1, 0), (1, 1), (0, 1), (3.5, 3.0), (1, 0.5), (0.5, 1), (0, 0.5), (0.5, 0.5)]
+        for mesh, first_tag, named in (("folded.msh", 1, r"element 1"),
+                                       ("tagged.msh", 101, r"element 101 \(1 in the results\)")):
+            self.write_msh(mesh, nodes, [(1, 2, 3, 5, 6, 9), (1, 3, 4, 9, 7, 8)], 9, first_tag)
+            deck = self.file_deck(mesh)
+            for np in (None, 2):
+                r = run(["--check", deck], self.dir, np=np)
+                self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
+                self.assertRegex(r.stderr, mesh + ": " + named + r" is folded: at one of its quadrature points the "
+                                           r"area Jacobian is -[0-9.]+ times that of its vertex triangle")
 
     def test_a_sliver_that_sets_the_time_step_is_reported(self):
         # A 4 x 2 grid of unit squares (TRI3, promoted to TRI6), 0.1 m thick, whose interior node (2, 1) is moved
