@@ -39,6 +39,7 @@ struct Frames {
   double interval = 3.5e-6;
   bool exact = false;  ///< Exact Output Times
   int history = 5;     ///< History Interval (a split run also writes a row at its last step)
+  bool ball = false;   ///< a free rigid sphere strikes the strip at x = L/2 from 5 us on (theory.md §12.4)
 };
 
 /// The strip's deck (cracked_strip.hpp, mesh in the parent directory) run to `end_time` with checkpointing (Step
@@ -55,6 +56,11 @@ Teuchos::RCP<Teuchos::ParameterList> strip_deck(const std::string& dir, double e
   material.set("Hardening Modulus", 20e9), material.set("Shear Yield", true);
   material.set("Cohesive Strength", 375e6), material.set("Fracture Energy", 10e3);
   set_probes(*deck, {"x_max"});
+  if (frames.ball) {  // radius 5 mm, 1 g (3.7 times the strip), 50 m/s down; 0.25 mm above the strip's upper face
+    auto& ball = deck->sublist("Contact").sublist("Rigid Bodies").sublist("ball");
+    ball.set("Radius", 5e-3), ball.set("Mass", 1e-3), ball.set("Velocity", vec3(0, 0, -50));
+    ball.set("Point", vec3(strip_L / 2, strip_b / 2, h / 2 + 0.25e-3 + 5e-3));
+  }
   return deck;
 }
 
@@ -160,6 +166,38 @@ TEST(Restart, ContinuesBitwiseThroughCrackActivation) {
     expect_same(ref, c, "written on 1 rank, restarted on 3");
     if (two != MPI_COMM_NULL) MPI_Comm_free(&two);
     if (self != MPI_COMM_NULL) MPI_Comm_free(&self);
+  }
+}
+
+// A free rigid body's motion is state: the ball of Frames::ball is in contact with the strip from about 5 us, so
+// the split at 10.5 us falls during the contact; the restarted run's history (the ball's position, velocity and
+// force columns included) and last frame equal the continuous run's bitwise, also from 3 ranks to 2.
+TEST(Restart, ContinuesBitwiseWithAFreeRigidBodyInContact) {
+  const auto root = work_dir("restart_ball");
+  if (parallel::rank() == 0) write_cracked_strip(root + "/strip_mesh.exo");
+  Frames frames;
+  frames.ball = true;
+  const auto ref = fresh(root + "/continuous"), same = fresh(root + "/same_ranks");
+  continuous(ref, MPI_COMM_WORLD, frames);
+  broken_run(same, MPI_COMM_WORLD, MPI_COMM_WORLD, frames);
+  expect_same(ref, same, "restart on the same rank count, ball in contact");
+  std::vector<std::string> hd;
+  const auto rows = read_history(ref + "/run_history.csv", hd);
+  if (parallel::rank() == 0) {  // the ball touched before the split and was still pushing after it
+    double first = 0, last = 0;
+    for (const auto& r : rows)
+      if (r[column(hd, "ball_force_z")] > 0) last = r[column(hd, "time")], first = first > 0 ? first : last;
+    EXPECT_GT(first, 0.0);
+    EXPECT_LT(first, 10.5e-6);
+    EXPECT_GT(last, 10.5e-6);
+  }
+  if (parallel::size() == 3) {
+    MPI_Comm two;
+    MPI_Comm_split(MPI_COMM_WORLD, parallel::rank() < 2 ? 0 : MPI_UNDEFINED, parallel::rank(), &two);
+    const auto a = fresh(root + "/three_to_two");
+    broken_run(a, MPI_COMM_WORLD, two, frames);
+    expect_same(ref, a, "written on 3 ranks, restarted on 2, ball in contact");
+    if (two != MPI_COMM_NULL) MPI_Comm_free(&two);
   }
 }
 

@@ -8,6 +8,7 @@
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/materials/elastic_resultant.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
+#include "shellfrac/solver/contact/rigid_bodies.hpp"
 #include "shellfrac/solver/contact/rigid_walls.hpp"
 #include "shellfrac/solver/dynamics/initial_conditions.hpp"
 #include "shellfrac/solver/fracture/fracture.hpp"
@@ -79,10 +80,12 @@ struct ShellDynamics::Impl {
         constraints(deck.boundary_conditions, sets, dm, deck.file),
         loads(deck.loads, sets, mesh, model),
         walls(deck.contact, model, dt, deck.file),
+        bodies(deck.contact, model, dt, deck.file),
         assembly(model, fracture.enabled(), times),
-        integrator(model, constraints, loads, walls, assembly, fracture, times, deck.time.mass_damping,
+        integrator(model, constraints, loads, walls, bodies, assembly, fracture, times, deck.time.mass_damping,
                    relaxation_settings(deck)) {
     set_initial_state(deck.initial_velocities, sets, model, constraints, state);
+    bodies.initial_state(state);
     integrator.start(state);
   }
 
@@ -94,6 +97,7 @@ struct ShellDynamics::Impl {
   Constraints constraints;
   Loads loads;
   RigidWalls walls;
+  RigidBodies bodies;
   ForceAssembly assembly;
   CentralDifference integrator;
   ShellState state;
@@ -135,6 +139,19 @@ std::vector<double> ShellDynamics::reactions() const {
 
 std::vector<double> ShellDynamics::wall_forces() const {
   return impl_->walls.normal_forces(impl_->state.time, impl_->state);
+}
+
+std::vector<std::string> ShellDynamics::contact_columns() const {
+  std::vector<std::string> out;
+  for (const auto& w : impl_->walls.names()) out.push_back(w + "_wall_force");
+  for (auto& c : impl_->bodies.history_columns()) out.push_back(std::move(c));
+  return out;
+}
+
+std::vector<double> ShellDynamics::contact_values() const {
+  std::vector<double> out = wall_forces();
+  for (double v : impl_->bodies.history_values(impl_->state)) out.push_back(v);
+  return out;
 }
 
 double ShellDynamics::bytes_per_element() const {

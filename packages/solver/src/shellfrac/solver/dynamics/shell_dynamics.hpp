@@ -66,6 +66,10 @@ class ShellDynamics {
   /// Per rigid wall, in deck order: the normal force it exerts on the shells now (history <wall>_wall_force).
   /// Collective.
   std::vector<double> wall_forces() const;
+  /// The history columns of the contact partners: <wall>_wall_force per wall, then per rigid body its position,
+  /// velocity, contact force and kinetic energy (contact/rigid_bodies.hpp); and their values now (collective).
+  std::vector<std::string> contact_columns() const;
+  std::vector<double> contact_values() const;
   /// Accumulated phase timings on this rank.
   const PhaseTimes& phase_times() const;
   /// Bytes of state, reference data and force buffers held on this rank, divided by the owned elements.

@@ -1,6 +1,7 @@
 #include "shellfrac/solver/input/contact_params.hpp"
 
 #include <cmath>
+#include <set>
 
 #include "shellfrac/core/error.hpp"
 
@@ -11,6 +12,28 @@ namespace {
 Vec3 vec3(const Teuchos::ParameterList& pl, const char* name, const params::Context& ctx) {
   const auto v = params::fixed_array(pl, name, 3, ctx);
   return {v[0], v[1], v[2]};
+}
+
+/// The vector parameter `name`, normalized; InputError if it is zero.
+Vec3 unit_vec3(const Teuchos::ParameterList& pl, const char* name, const params::Context& ctx) {
+  Vec3 v = vec3(pl, name, ctx);
+  const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  SHELLFRAC_INPUT_REQUIRE(n > 0 && std::isfinite(n), ctx.file << ": '" << ctx.path << "->" << name << "' is zero");
+  for (double& c : v) c /= n;
+  return v;
+}
+
+/// The named sublists of `list` (one per wall or body), each read by `read`.
+template <class T>
+std::vector<T> named_entries(Teuchos::ParameterList& list, const char* what, const params::Context& ctx) {
+  std::vector<T> out;
+  for (auto it = list.begin(); it != list.end(); ++it) {
+    const std::string& name = list.name(it);
+    SHELLFRAC_INPUT_REQUIRE(list.entry(it).isList(), ctx.file << ": '" << ctx.path << "->" << name
+                                                              << "' must be a sublist (" << what << ")");
+    out.push_back(T::from_parameters(name, list.sublist(name), ctx / name));
+  }
+  return out;
 }
 
 }  // namespace
@@ -32,10 +55,59 @@ RigidWall RigidWall::from_parameters(const std::string& name, Teuchos::Parameter
   w.point = vec3(pl, "Point", ctx);
   w.normal = vec3(pl, "Normal", ctx);
   w.velocity = vec3(pl, "Velocity", ctx);
-  const double n = std::sqrt(w.normal[0] * w.normal[0] + w.normal[1] * w.normal[1] + w.normal[2] * w.normal[2]);
-  SHELLFRAC_INPUT_REQUIRE(n > 0 && std::isfinite(n), ctx.file << ": '" << ctx.path << "->Normal' is zero");
-  for (double& c : w.normal) c /= n;
+  w.normal = unit_vec3(pl, "Normal", ctx);
   return w;
+}
+
+Teuchos::RCP<const Teuchos::ParameterList> RigidBody::valid_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("<body name>"));
+  params::set_choice(*pl, "Shape", "Sphere",
+                     "Sphere (centre Point, Radius), or Cylinder (Radius, Length, Axis, Nose): a projectile whose nose "
+                     "ends its cylindrical part at Point and points along Axis",
+                     {"Sphere", "Cylinder"});
+  pl->set("Radius", 0.01, "Radius of the sphere or of the cylinder [length]", params::positive_double());
+  pl->set("Point", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0, 0.0)),
+          "At t = 0: the sphere's centre, or the centre of the cylinder's nose base {x, y, z}");
+  pl->set("Axis", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0, -1.0)),
+          "Cylinder: the way its nose points {ax, ay, az} (normalized)");
+  pl->set("Length", 0.05, "Cylinder: length of the cylindrical part behind Point [length]", params::positive_double());
+  params::set_choice(*pl, "Nose", "Hemispherical",
+                     "Cylinder: the nose's shape (a hemisphere of the cylinder's radius, a cone of Nose Half-Angle, or "
+                     "flat)",
+                     {"Hemispherical", "Conical", "Flat"});
+  pl->set("Nose Half-Angle", 30.0, "Cylinder, Conical nose: the cone's half-angle at its tip [degrees]",
+          params::double_range(1, 89));
+  pl->set("Velocity", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0, 0.0)),
+          "Velocity {vx, vy, vz} [length/time]: the initial one of a free body (Mass > 0), else the prescribed, "
+          "constant one");
+  pl->set("Mass", 0.0,
+          "Mass of a free rigid body [mass], moved by the contact forces; 0: the motion is prescribed (Velocity)",
+          params::non_negative_double());
+  return pl;
+}
+
+RigidBody RigidBody::from_parameters(const std::string& name, Teuchos::ParameterList& pl, const params::Context& ctx) {
+  params::validate(pl, *valid_parameters(), ctx);
+  RigidBody b;
+  b.name = name;
+  b.shape = pl.get<std::string>("Shape") == "Sphere" ? Shape::Sphere : Shape::Cylinder;
+  const std::string nose = pl.get<std::string>("Nose");
+  b.nose = nose == "Hemispherical" ? Nose::Hemispherical : nose == "Conical" ? Nose::Conical : Nose::Flat;
+  params::refuse_inapplicable(pl, *valid_parameters(), "a '" + pl.get<std::string>("Shape") + "' rigid body",
+                              [&](const std::string& p) {
+                                if (p == "Axis" || p == "Length" || p == "Nose") return b.shape == Shape::Cylinder;
+                                if (p == "Nose Half-Angle") return b.shape == Shape::Cylinder && b.nose == Nose::Conical;
+                                return true;
+                              },
+                              ctx);
+  b.radius = pl.get<double>("Radius");
+  b.length = pl.get<double>("Length");
+  b.half_angle = pl.get<double>("Nose Half-Angle") * std::acos(-1.0) / 180;
+  b.point = vec3(pl, "Point", ctx);
+  b.axis = unit_vec3(pl, "Axis", ctx);
+  b.velocity = vec3(pl, "Velocity", ctx);
+  b.mass = pl.get<double>("Mass");
+  return b;
 }
 
 Teuchos::RCP<const Teuchos::ParameterList> ContactParams::valid_parameters() {
@@ -45,6 +117,7 @@ Teuchos::RCP<const Teuchos::ParameterList> ContactParams::valid_parameters() {
           "4 (1 - S_f^2) with S_f = dt / the stable step, so that contact does not make the step unstable",
           params::positive_double());
   pl->sublist("Rigid Walls", false, "One sublist per planar rigid wall, named freely");
+  pl->sublist("Rigid Bodies", false, "One sublist per rigid body (sphere or projectile), named freely");
   return pl;
 }
 
@@ -52,13 +125,14 @@ ContactParams ContactParams::from_parameters(Teuchos::ParameterList& pl, const p
   params::validate(pl, *valid_parameters(), ctx);
   ContactParams c;
   c.penalty_scale = pl.get<double>("Penalty Scale");
-  auto& walls = pl.sublist("Rigid Walls");
-  for (auto it = walls.begin(); it != walls.end(); ++it) {
-    const std::string& name = walls.name(it);
-    SHELLFRAC_INPUT_REQUIRE(walls.entry(it).isList(), ctx.file << ": '" << ctx.path << "->Rigid Walls->" << name
-                                                               << "' must be a sublist (Point, Normal, Velocity)");
-    c.walls.push_back(RigidWall::from_parameters(name, walls.sublist(name), ctx / "Rigid Walls" / name));
-  }
+  c.walls = named_entries<RigidWall>(pl.sublist("Rigid Walls"), "Point, Normal, Velocity", ctx / "Rigid Walls");
+  c.bodies = named_entries<RigidBody>(pl.sublist("Rigid Bodies"), "Shape, Radius, Point, ...", ctx / "Rigid Bodies");
+  std::set<std::string> names;
+  for (const auto& w : c.walls) names.insert(w.name);
+  for (const auto& b : c.bodies)
+    SHELLFRAC_INPUT_REQUIRE(names.insert(b.name).second, ctx.file << ": '" << ctx.path << "->Rigid Bodies->" << b.name
+                                                                  << "' has the name of a rigid wall; name them "
+                                                                     "apart (they name history columns)");
   return c;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 /// \file contact_params.hpp
-/// The deck's "Contact" sublist (docs/theory.md §12): rigid planar walls the shells bounce off, and the penalty
-/// scale of the contact law.
+/// The deck's "Contact" sublist (docs/theory.md §12): rigid planar walls the shells bounce off, rigid bodies
+/// (spheres and projectiles) that strike them, and the penalty scale of the contact law.
 #include <string>
 #include <vector>
 
@@ -26,11 +26,35 @@ struct RigidWall {
   static RigidWall from_parameters(const std::string& name, Teuchos::ParameterList& pl, const params::Context& ctx);
 };
 
-/// "Contact": the walls, and the penalty k = Penalty Scale m / dt^2 of each DG node of mass m (docs/theory.md
+/// "Contact->Rigid Bodies-><name>": a rigid, axisymmetric body (theory.md §12.4) that translates without
+/// turning: a Sphere (centre Point, Radius), or a Cylinder of Radius whose nose of the chosen shape ends the
+/// cylindrical part at Point and points along Axis (the body extends Length behind Point). With a Mass it is a
+/// free body launched at Velocity, moved by the shells' contact forces; without one (Mass 0) it moves at the
+/// constant Velocity whatever the forces.
+struct RigidBody {
+  enum class Shape { Sphere, Cylinder };
+  enum class Nose { Hemispherical, Conical, Flat };
+  std::string name;
+  Shape shape = Shape::Sphere;
+  Nose nose = Nose::Hemispherical;
+  double radius = 0;
+  double length = 0;      ///< of the cylindrical part, behind Point (Cylinder)
+  double half_angle = 0;  ///< of a conical nose [rad] (Cylinder, Conical); the nose is radius / tan(half_angle) long
+  Vec3 point{0, 0, 0};    ///< at t = 0: the sphere's centre, or the centre of the nose's base
+  Vec3 axis{0, 0, 1};     ///< unit: the way the nose points (Cylinder)
+  Vec3 velocity{0, 0, 0};
+  double mass = 0;  ///< 0: the motion is prescribed (constant Velocity)
+  bool free() const { return mass > 0; }
+  static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
+  static RigidBody from_parameters(const std::string& name, Teuchos::ParameterList& pl, const params::Context& ctx);
+};
+
+/// "Contact": the walls and bodies, and the penalty k = Penalty Scale m / dt^2 of each DG node of mass m (docs/theory.md
 /// §12.2: with the default safety factor the step stays stable, which the set-up checks).
 struct ContactParams {
   double penalty_scale = 0.25;
   std::vector<RigidWall> walls;
+  std::vector<RigidBody> bodies;
   /// The sublist without its user-named walls (those are validated one by one, RigidWall::valid_parameters).
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
   /// The whole sublist, walls included. InputError for any problem.

@@ -76,6 +76,14 @@ inline void store_matrix(const double L[3][3], double* v) {
 /// fully separated.
 enum InterfaceMode : int { intact = 0, cohesive = 1, separated = 2 };
 
+/// The motion of a rigid body (contact/rigid_bodies.hpp), the same on every rank: where its Point is, its velocity
+/// and acceleration, and the contact force the shells exert on it. Between the predictor and the corrector of a
+/// step, v holds the predictor's half-step velocity.
+struct RigidBodyState {
+  std::string name;  ///< the deck's name of the body (checkpoint keys, history columns)
+  Vec3 x{0, 0, 0}, v{0, 0, 0}, a{0, 0, 0}, force{0, 0, 0};
+};
+
 /// Everything that evolves in time. Positions and directors cover the overlap (owned elements, then the ghost
 /// layer, whose rows the ghost exchange fills); the other element rows cover the owned elements; interface rows
 /// cover every local interface.
@@ -108,6 +116,8 @@ struct ShellState {
   Scalars cohesive_energy, cohesive_dissipation;  ///< stored and dissipated cohesive energy
   Scalars interface_activation_loss;  ///< penalty energy released at activation
   Scalars penalty_energy;        ///< U_stab of an intact interface
+  /// The rigid bodies, in deck order (none without Contact->Rigid Bodies).
+  std::vector<RigidBodyState> bodies;
 
   /// Calls visit(name, rows) for each element field a checkpoint holds, in the checkpoint's column order
   /// (state: a ShellState or a const ShellState).

@@ -229,11 +229,11 @@ RunOutputs::RunOutputs(const Deck& deck, RunModel& model, const ResultsSets& set
     element_constant_[1].push_back(dm.rank());
   }
   for (const auto& bc : deck.boundary_conditions) condition_names_.push_back(bc.name);
-  for (const auto& w : deck.contact.walls) wall_names_.push_back(w.name);
+  contact_columns_ = model.dynamics->contact_columns();
   std::vector<std::string> columns;
   for (const auto& [name, value] : history_row({}, 0, probe_names_, std::vector<double>(6 * probe_names_.size()),
                                                condition_names_, std::vector<double>(6 * condition_names_.size()),
-                                               wall_names_, std::vector<double>(wall_names_.size())))
+                                               contact_columns_, std::vector<double>(contact_columns_.size())))
     columns.push_back(name);
   exodus_ = std::make_unique<io::ExodusResultsWriter>(exodus_path_, results_layout(deck, model, sets, columns), comm);
   // A table: a new file, or after a restart the table the checkpoint names continued if it is this base's and
@@ -289,10 +289,10 @@ std::vector<double> RunOutputs::history_values(StepRecord* record) {
   const StepRecord r = dyn.record();
   const auto probes = dyn.probes(probe_members_);
   const auto reactions = dyn.reactions();
-  const auto wall_forces = dyn.wall_forces();
+  const auto contact = dyn.contact_values();
   std::vector<double> values;
   for (const auto& [name, value] :
-       history_row(r, e0_, probe_names_, probes, condition_names_, reactions, wall_names_, wall_forces))
+       history_row(r, e0_, probe_names_, probes, condition_names_, reactions, contact_columns_, contact))
     values.push_back(value);
   if (record) *record = r;
   return values;

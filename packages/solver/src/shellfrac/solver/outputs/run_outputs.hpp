@@ -96,7 +96,7 @@ class RunOutputs {
   std::vector<double> history_values(StepRecord* record);
   const Deck& deck_;
   RunModel& model_;
-  std::vector<std::string> probe_names_, condition_names_, wall_names_;
+  std::vector<std::string> probe_names_, condition_names_, contact_columns_;
   const std::vector<std::vector<char>>& probe_members_;
   double e0_;
   std::string exodus_path_;

@@ -38,6 +38,16 @@ void read_row(Rows<P, V>& f, LocalId r, const double*& in) {
 void read_row(std::vector<int>& f, LocalId r, const double*& in) { f[r] = int(*in++); }
 
 std::string element_table(const char* field) { return std::string("element ") + field; }
+
+/// The checkpoint scalars of a rigid body's motion: "rigid body <name> <x|v|a|force> <x|y|z>", with the values'
+/// places in RigidBodyState, in that order.
+template <class Body, class Visit>
+void visit_body_scalars(Body& b, Visit&& visit) {
+  const std::pair<const char*, decltype(&b.x)> fields[] = {{"x", &b.x}, {"v", &b.v}, {"a", &b.a}, {"force", &b.force}};
+  for (const auto& [field, values] : fields)
+    for (int c = 0; c < 3; ++c)
+      visit("rigid body " + b.name + " " + field + " " + char('x' + c), (*values)[std::size_t(c)]);
+}
 std::string interface_table(const char* field) { return std::string("interface ") + field; }
 
 }  // namespace
@@ -49,6 +59,7 @@ io::CheckpointData state_checkpoint(const ShellState& s, const decomposition::Di
   io::CheckpointData d;
   d.scalars["time"] = s.time, d.scalars["step"] = double(s.step);
   d.scalars["num_elements"] = double(dm.num_global_elements());
+  for (const auto& b : s.bodies) visit_body_scalars(b, [&](const std::string& key, double v) { d.scalars[key] = v; });
   const auto* mesh = &dm;
   const auto element_ids = [mesh] {
     std::vector<GlobalId> ids(std::size_t(mesh->num_owned()));
@@ -131,6 +142,12 @@ void StateRestore::header(const io::CheckpointData& d) {
                           file_ << ": the checkpoint's time " << time << " at step " << step << " is not finite and "
                                 << "positive after step 0 (0 at step 0): the file was not written by a shellfrac run");
   s_.time = time, s_.step = long(step);
+  for (auto& b : s_.bodies)
+    visit_body_scalars(b, [&](const std::string& key, double& v) {
+      v = scalar(key.c_str());
+      SHELLFRAC_INPUT_REQUIRE(std::isfinite(v), file_ << ": the checkpoint's '" << key << "' is " << v
+                                                      << ", not finite: the file was not written by a shellfrac run");
+    });
 }
 
 // The first value of a block that no run can have written, in words; "" if none. Every value finite; a director

@@ -15,6 +15,7 @@
 #include "shellfrac/solver/fracture/fracture.hpp"
 #include "shellfrac/solver/model/kernel_views.hpp"
 #include "shellfrac/solver/model/shell_model.hpp"
+#include "shellfrac/solver/contact/rigid_bodies.hpp"
 #include "shellfrac/solver/contact/rigid_walls.hpp"
 #include "shellfrac/solver/step/constraints.hpp"
 #include "shellfrac/solver/step/force_assembly.hpp"
@@ -166,12 +167,14 @@ Accelerate accelerations(const ShellModel& model, const Constraints& constraints
 }  // namespace
 
 CentralDifference::CentralDifference(ShellModel& model, Constraints& constraints, const Loads& loads,
-                                     const RigidWalls& walls, ForceAssembly& assembly, Fracture& fracture,
+                                     const RigidWalls& walls, const RigidBodies& bodies, ForceAssembly& assembly,
+                                     Fracture& fracture,
                                      PhaseTimes& times, double mass_damping, Relaxation relaxation)
     : model_(model),
       constraints_(constraints),
       loads_(loads),
       walls_(walls),
+      bodies_(bodies),
       assembly_(assembly),
       fracture_(fracture),
       times_(times),
@@ -196,6 +199,7 @@ void CentralDifference::step(ShellState& s, double dt, double t1) {
     ScopedTimer timer(times_.update);
     remember_step_start(s);
     predict(s, dt, t1);  // paper eqs. 47-48, Algorithm 1
+    bodies_.predict(s, dt, t1);
     constraints_.apply_rotations(t1, s);
   }
   assembly_.exchange_state(s);
@@ -208,6 +212,7 @@ void CentralDifference::step(ShellState& s, double dt, double t1) {
   }
   external_forces(t1, s);
   correct(s, dt, t1);
+  bodies_.correct(s, dt);
   constraints_.apply_rotations(t1, s);
   constraints_.add_rotation_work(s, model_);
   s.time = t1;
@@ -219,6 +224,7 @@ void CentralDifference::step(ShellState& s, double dt, double t1) {
 void CentralDifference::external_forces(double t, ShellState& s) const {
   loads_.external_forces(t, s, s.external_force, s.external_director_force);
   if (!walls_.empty()) walls_.add_forces(t, s, s.external_force);
+  if (!bodies_.empty()) bodies_.add_forces(s, s.bodies, s.external_force);
 }
 
 // Static relaxation (docs/theory.md §7.5): when the global kinetic energy has passed a peak, the free velocities are

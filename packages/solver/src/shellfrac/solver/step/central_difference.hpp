@@ -16,6 +16,7 @@ class ForceAssembly;
 class Fracture;
 class Loads;
 class RigidWalls;
+class RigidBodies;
 struct ShellModel;
 
 class CentralDifference {
@@ -27,9 +28,10 @@ class CentralDifference {
     double tolerance = 1e-6, start = 0;
   };
   /// `mass_damping`: alpha of the damping force alpha m v (dynamic relaxation; 0 = none).
-  /// `walls`: the rigid walls, whose contact forces join the loads' (docs/theory.md §12).
+  /// `walls`, `bodies`: the rigid walls and bodies, whose contact forces join the loads' (docs/theory.md §12);
+  /// the free bodies are integrated with the shells.
   CentralDifference(ShellModel& model, Constraints& constraints, const Loads& loads, const RigidWalls& walls,
-                    ForceAssembly& assembly, Fracture& fracture, PhaseTimes& times, double mass_damping,
+                    const RigidBodies& bodies, ForceAssembly& assembly, Fracture& fracture, PhaseTimes& times, double mass_damping,
                     Relaxation relaxation);
 
   /// Start-up (docs/theory.md §7.4): forces, loads, accelerations and reactions of the initial state.
@@ -50,7 +52,8 @@ class CentralDifference {
   void book_plastic_work(ShellState& s) const;
   void correct(ShellState& s, double dt, double t1);
   void check_finite(const ShellState& s) const;
-  /// The loads and the walls' contact forces at time t: s.external_force, s.external_director_force.
+  /// The loads and the walls' and bodies' contact forces at time t (the bodies where s.bodies has them):
+  /// s.external_force, s.external_director_force, the bodies' forces and accelerations. Collective.
   void external_forces(double t, ShellState& s) const;
   void relax(ShellState& s);
   void reset_free_velocities(ShellState& s) const;
@@ -60,6 +63,7 @@ class CentralDifference {
   Constraints& constraints_;
   const Loads& loads_;
   const RigidWalls& walls_;
+  const RigidBodies& bodies_;
   ForceAssembly& assembly_;
   Fracture& fracture_;
   PhaseTimes& times_;

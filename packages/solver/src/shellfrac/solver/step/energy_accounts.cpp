@@ -133,8 +133,8 @@ std::vector<double> reaction_values(const ShellState& s, const ShellModel& model
 
 HistoryRow history_row(const StepRecord& r, double e0, const std::vector<std::string>& probe_names,
                        const std::vector<double>& probes, const std::vector<std::string>& condition_names,
-                       const std::vector<double>& reactions, const std::vector<std::string>& wall_names,
-                       const std::vector<double>& wall_forces) {
+                       const std::vector<double>& reactions, const std::vector<std::string>& contact_columns,
+                       const std::vector<double>& contact_values) {
   HistoryRow row = {{"step", double(r.step)},           {"time", r.time},
                     {"dt", r.dt},                       {"kinetic_energy", r.kinetic},
                     {"strain_energy", r.strain},        {"penalty_energy", r.penalty},
@@ -156,7 +156,7 @@ HistoryRow history_row(const StepRecord& r, double e0, const std::vector<std::st
     for (const char* q : {"_reaction_x", "_reaction_y", "_reaction_z", "_moment_x", "_moment_y", "_moment_z"})
       row.push_back({bc + q, reactions[k++]});
   for (int c = 0; c < 3; ++c) row.push_back({std::string("angular_momentum_") + char('x' + c), r.angular_momentum[c]});
-  for (std::size_t w = 0; w < wall_names.size(); ++w) row.push_back({wall_names[w] + "_wall_force", wall_forces[w]});
+  for (std::size_t k = 0; k < contact_columns.size(); ++k) row.push_back({contact_columns[k], contact_values[k]});
   return row;
 }
 

@@ -54,12 +54,12 @@ std::vector<double> reaction_values(const ShellState& s, const ShellModel& model
 
 /// One history row as (column name, value) pairs in column order: step, time, dt, energies and the balance
 /// error, the probes (<set>_displ_x ... <set>_vel_z), the other work accounts, the fracture counts, the
-/// reactions (<condition>_reaction_x ... _moment_z), the angular momentum and the rigid walls' normal forces
-/// (<wall>_wall_force).
+/// reactions (<condition>_reaction_x ... _moment_z), the angular momentum and the contact partners' columns
+/// (ShellDynamics::contact_columns: the walls' normal forces <wall>_wall_force, the rigid bodies' motion).
 using HistoryRow = std::vector<std::pair<std::string, double>>;
 HistoryRow history_row(const StepRecord& r, double e0, const std::vector<std::string>& probe_names,
                        const std::vector<double>& probes, const std::vector<std::string>& condition_names,
-                       const std::vector<double>& reactions, const std::vector<std::string>& wall_names,
-                       const std::vector<double>& wall_forces);
+                       const std::vector<double>& reactions, const std::vector<std::string>& contact_columns,
+                       const std::vector<double>& contact_values);
 
 }  // namespace shellfrac::solver
