@@ -5,6 +5,7 @@
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/exact_sum.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
+#include "shellfrac/solver/contact/contact_penalty.hpp"
 #include "shellfrac/solver/contact/rigid_body_shape.hpp"
 #include "shellfrac/solver/model/shell_model.hpp"
 
@@ -16,12 +17,7 @@ RigidBodies::RigidBodies(const ContactParams& params, const ShellModel& model, d
       penalty_scale_(params.penalty_scale),
       stiffness_per_mass_(params.penalty_scale / (dt * dt)),
       step_ratio_squared_(4 * (dt / model.stable_dt) * (dt / model.stable_dt)) {
-  if (bodies_.empty()) return;
-  SHELLFRAC_INPUT_REQUIRE(step_ratio_squared_ + penalty_scale_ < 4,
-                          file << ": 'Contact->Penalty Scale' = " << penalty_scale_ << " with the time step " << dt
-                               << " (" << dt / model.stable_dt << " of the stable step) makes the step unstable: a "
-                               << "node in contact needs (2 S_f)^2 + Penalty Scale < 4 (theory.md §12.2); lower the "
-                               << "scale or the 'Time Integration->Safety Factor'");
+  if (!bodies_.empty()) check_contact_penalty(penalty_scale_, dt, model.stable_dt, file);
 }
 
 void RigidBodies::initial_state(ShellState& s) const {

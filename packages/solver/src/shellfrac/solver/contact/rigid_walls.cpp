@@ -2,6 +2,7 @@
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/exact_sum.hpp"
+#include "shellfrac/solver/contact/contact_penalty.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/solver/model/shell_model.hpp"
 
@@ -9,13 +10,7 @@ namespace shellfrac::solver {
 
 RigidWalls::RigidWalls(const ContactParams& params, const ShellModel& model, double dt, const std::string& file)
     : model_(model), walls_(params.walls), stiffness_per_mass_(params.penalty_scale / (dt * dt)) {
-  if (walls_.empty()) return;
-  const double sf = dt / model.stable_dt;
-  SHELLFRAC_INPUT_REQUIRE(4 * sf * sf + params.penalty_scale < 4,
-                          file << ": 'Contact->Penalty Scale' = " << params.penalty_scale << " with the time step "
-                               << dt << " (" << sf << " of the stable step) makes the step unstable: a node in "
-                               << "contact needs (2 S_f)^2 + Penalty Scale < 4 (theory.md §12.2); lower the scale "
-                               << "or the 'Time Integration->Safety Factor'");
+  if (!walls_.empty()) check_contact_penalty(params.penalty_scale, dt, model.stable_dt, file);
 }
 
 double RigidWalls::node_force(const RigidWall& w, double t, const ShellState& s, LocalId le, int A) const {
