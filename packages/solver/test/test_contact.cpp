@@ -144,6 +144,13 @@ TEST(RigidBody, SignedDistancesOfTheShapes) {
   expect_distance(round, {0, 0, -3}, 2, {0, 0, -1});
   expect_distance(round, {0, 0.6, -0.8}, 0, {0, 0.6, -0.8});  // on the hemisphere
   expect_distance(round, {0, 0, -0.5}, -0.5, {0, 0, -1});
+  // The bounding spheres hold the body: its tip and its back rim lie on them (cone: tip 1 ahead, back 3 behind).
+  for (const auto& [b, tip] : {std::pair{cone, 1.0}, std::pair{round, 1.0}, std::pair{projectile(Nose::Flat), 0.0}}) {
+    const auto s = solver::bounding_sphere(b);
+    EXPECT_NEAR(s.offset, 0.5 * (tip - 3), 1e-15);
+    EXPECT_NEAR(s.radius, std::hypot(0.5 * (tip + 3), 1.0), 1e-15);
+  }
+  EXPECT_EQ(solver::bounding_sphere(sphere).radius, 2.0);
   const auto flat = projectile(Nose::Flat);
   expect_distance(flat, {0.3, 0.4, -0.25}, 0.25, {0, 0, -1});
   expect_distance(flat, {0.3, 0.4, 0.25}, -0.25, {0, 0, -1});  // inside, nearest the face

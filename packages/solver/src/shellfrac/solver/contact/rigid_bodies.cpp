@@ -44,11 +44,19 @@ void RigidBodies::add_forces(const ShellState& shells, std::vector<RigidBodyStat
   if (bodies_.empty()) return;
   // Per body: the force on the shells (3) and the mass of the nodes in contact (1), summed exactly.
   std::vector<ExactSum> sums(4 * bodies_.size());
-  for (std::size_t k = 0; k < bodies_.size(); ++k)
+  for (std::size_t k = 0; k < bodies_.size(); ++k) {
+    const RigidBody& b = bodies_[k];
+    const BoundingSphere bound = bounding_sphere(b);
+    const Vec3 axis = b.shape == RigidBody::Shape::Sphere ? Vec3{0, 0, 0} : b.axis;
+    Vec3 centre;
+    for (int c = 0; c < 3; ++c) centre[c] = bodies[k].x[c] + bound.offset * axis[c];
     for (LocalId le = 0; le < model_.owned; ++le) {
       const double h = model_.sections[model_.dm.element_block(le)].thickness;
+      const double reach = (bound.radius + 0.5 * h) * (bound.radius + 0.5 * h);
       for (int A = 0; A < position_nodes; ++A) {
         const double* x = shells.x.at(le, A);
+        const double dx = x[0] - centre[0], dy = x[1] - centre[1], dz = x[2] - centre[2];
+        if (dx * dx + dy * dy + dz * dz > reach) continue;  // outside the bounding sphere: no contact
         const SurfaceDistance d = surface_distance(bodies_[k], bodies[k].x, {x[0], x[1], x[2]});
         const double gap = d.distance - 0.5 * h;
         if (gap >= 0) continue;
@@ -58,6 +66,7 @@ void RigidBodies::add_forces(const ShellState& shells, std::vector<RigidBodyStat
         sums[4 * k + 3].add(m);
       }
     }
+  }
   ExactSum::allreduce(sums, model_.dm.comm());
   for (std::size_t k = 0; k < bodies_.size(); ++k) {
     const RigidBody& b = bodies_[k];

@@ -80,6 +80,15 @@ void profile_distance(const RigidBody& b, Point2 p, double& distance, Point2& no
 
 }  // namespace
 
+BoundingSphere bounding_sphere(const RigidBody& b) {
+  if (b.shape == RigidBody::Shape::Sphere) return {0, b.radius};
+  const double nose = b.nose == RigidBody::Nose::Hemispherical ? b.radius
+                      : b.nose == RigidBody::Nose::Conical     ? b.radius / std::tan(b.half_angle)
+                                                               : 0.0;
+  const double half = 0.5 * (nose + b.length);  // the body spans a = -length .. nose along its axis
+  return {0.5 * (nose - b.length), std::hypot(half, b.radius)};
+}
+
 SurfaceDistance surface_distance(const RigidBody& b, const Vec3& point, const Vec3& x) {
   const Vec3 axis = b.shape == RigidBody::Shape::Sphere ? Vec3{0, 0, 1} : b.axis;
   const Vec3 d{x[0] - point[0], x[1] - point[1], x[2] - point[2]};

@@ -19,4 +19,11 @@ struct SurfaceDistance {
 /// The signed distance of x from body b whose Point is at `point` (it translates without turning).
 SurfaceDistance surface_distance(const RigidBody& b, const Vec3& point, const Vec3& x);
 
+/// A sphere that holds body b: its centre is Point + offset * axis, and every point of the body is within radius of it
+/// (a point farther than radius + h/2 from the centre is not in contact: no distance to compute).
+struct BoundingSphere {
+  double offset = 0, radius = 0;
+};
+BoundingSphere bounding_sphere(const RigidBody& b);
+
 }  // namespace shellfrac::solver
