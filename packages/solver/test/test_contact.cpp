@@ -232,3 +232,29 @@ TEST(RigidBody, FreeBodyStrikesAFreePlateAsTwoMassesOnASpring) {
       },
       NumericalError);
 }
+
+// The same ram with its motion prescribed (Mass 0): it keeps V whatever the forces, and the plate follows the
+// recurrence of a mass pushed by a one-sided spring whose other end moves at -V: z_b(t) = face0 - V t exactly.
+TEST(RigidBody, PrescribedBodyKeepsItsVelocityAndPushesThePlate) {
+  const double s = 0.25;
+  const double dt = build_model(struck_plate(0.0, 1e3)).dynamics->time_step();
+  const double face0 = 0.5 * h + 1.5 * V * dt;
+  auto model = build_model(struck_plate(0.0, face0));
+  auto& dyn = *model.dynamics;
+  double zp = 0, vp = 0, ap = 0;
+  const double k = s / (dt * dt);
+  for (int step = 1; step <= 30; ++step) {
+    const double t = step * dt;
+    zp += dt * vp + 0.5 * dt * dt * ap;
+    const double pen = std::max(0.0, -((face0 - V * t) - zp - 0.5 * h)), ap1 = -k * pen;
+    vp += 0.5 * dt * (ap + ap1), ap = ap1;
+    dyn.step();
+    const auto values = dyn.contact_values();
+    EXPECT_NEAR(values[2], face0 - V * t, 1e-14) << "step " << step;
+    EXPECT_EQ(values[5], -V) << "step " << step;
+    EXPECT_EQ(values[9], 0.0);  // a prescribed body has no kinetic energy of its own in the history
+    EXPECT_NEAR(dyn.probes({std::vector<char>(std::size_t(model.counts.nodes), 1)}).at(5), vp, 1e-9 * V)
+        << "step " << step;
+  }
+  EXPECT_LT(vp, -V);  // pushed ahead of the ram, faster than it (the spring's overshoot)
+}
