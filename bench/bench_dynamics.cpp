@@ -104,6 +104,7 @@ int run(int argc, char** argv) {
   const double exchange = per_element_step(after.exchange - before.exchange);
   const double update = per_element_step(after.update - before.update);
   const double nucleation = per_element_step(after.nucleation - before.nucleation);
+  const double contact = per_element_step(after.contact - before.contact);
   const double total = per_element_step(wall);
   const double bytes = parallel::max(dyn.bytes_per_element(), comm);
   const int threads = Kokkos::DefaultExecutionSpace().concurrency();
@@ -121,6 +122,7 @@ int run(int argc, char** argv) {
               << "communication_us_per_element_step=" << exchange << "\n"
               << "update_us_per_element_step=" << update << "\n"
               << "nucleation_check_us_per_element_step=" << nucleation << " (part of update)\n"
+              << "shell_contact_us_per_element_step=" << contact << " (part of update)\n"
               << "bytes_per_element=" << bytes << "\n"
               << "peak_resident_bytes_max=" << *std::max_element(peaks.begin(), peaks.end()) << "\n"
               << "peak_resident_bytes_per_element=" << peak_sum / double(dmesh.num_global_elements()) << "\n"

@@ -10,6 +10,7 @@
 #include "shellfrac/mesh/serial_mesh.hpp"
 #include "shellfrac/solver/contact/rigid_bodies.hpp"
 #include "shellfrac/solver/contact/rigid_walls.hpp"
+#include "shellfrac/solver/contact/shell_contact.hpp"
 #include "shellfrac/solver/dynamics/initial_conditions.hpp"
 #include "shellfrac/solver/fracture/fracture.hpp"
 #include "shellfrac/solver/input/deck.hpp"
@@ -81,8 +82,9 @@ struct ShellDynamics::Impl {
         loads(deck.loads, sets, mesh, model),
         walls(deck.contact, model, dt, deck.file),
         bodies(deck.contact, model, dt, deck.file),
+        shells(deck.contact, model, dt, block_names(mesh), deck.file),
         assembly(model, fracture.enabled(), times),
-        integrator(model, constraints, loads, walls, bodies, assembly, fracture, times, deck.time.mass_damping,
+        integrator(model, constraints, loads, walls, bodies, shells, assembly, fracture, times, deck.time.mass_damping,
                    relaxation_settings(deck)) {
     set_initial_state(deck.initial_velocities, sets, model, constraints, state);
     bodies.initial_state(state);
@@ -98,6 +100,7 @@ struct ShellDynamics::Impl {
   Loads loads;
   RigidWalls walls;
   RigidBodies bodies;
+  ShellContact shells;
   ForceAssembly assembly;
   CentralDifference integrator;
   ShellState state;
@@ -145,12 +148,14 @@ std::vector<std::string> ShellDynamics::contact_columns() const {
   std::vector<std::string> out;
   for (const auto& w : impl_->walls.names()) out.push_back(w + "_wall_force");
   for (auto& c : impl_->bodies.history_columns()) out.push_back(std::move(c));
+  for (auto& c : impl_->shells.history_columns()) out.push_back(std::move(c));
   return out;
 }
 
 std::vector<double> ShellDynamics::contact_values() const {
   std::vector<double> out = wall_forces();
   for (double v : impl_->bodies.history_values(impl_->state)) out.push_back(v);
+  for (double v : impl_->shells.history_values()) out.push_back(v);
   return out;
 }
 

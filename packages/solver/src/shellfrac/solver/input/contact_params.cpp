@@ -110,6 +110,30 @@ RigidBody RigidBody::from_parameters(const std::string& name, Teuchos::Parameter
   return b;
 }
 
+Teuchos::RCP<const Teuchos::ParameterList> ShellContactParams::valid_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Shells"));
+  pl->set("Blocks", Teuchos::Array<std::string>(),
+          "The blocks whose shells contact each other (and themselves): block names, or {all}; empty: none");
+  pl->set("Penalty Scale", 0.1,
+          "A node's stiffness against another element's mid-surface is Penalty Scale mu / dt^2, mu the smaller "
+          "of the two sides' node masses halved (theory.md §12.5)",
+          params::positive_double());
+  pl->set("Search Margin", 0.0,
+          "Margin of the contact candidate lists [length]; they are rebuilt when a node has moved half of it. "
+          "0: the largest thickness of the blocks in contact",
+          params::non_negative_double());
+  return pl;
+}
+
+ShellContactParams ShellContactParams::from_parameters(Teuchos::ParameterList& pl, const params::Context& ctx) {
+  params::validate(pl, *valid_parameters(), ctx);
+  ShellContactParams c;
+  for (const auto& b : pl.get<Teuchos::Array<std::string>>("Blocks")) c.blocks.push_back(b);
+  c.penalty_scale = pl.get<double>("Penalty Scale");
+  c.search_margin = pl.get<double>("Search Margin");
+  return c;
+}
+
 Teuchos::RCP<const Teuchos::ParameterList> ContactParams::valid_parameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("Contact"));
   pl->set("Penalty Scale", 0.25,
@@ -118,6 +142,7 @@ Teuchos::RCP<const Teuchos::ParameterList> ContactParams::valid_parameters() {
           params::positive_double());
   pl->sublist("Rigid Walls", false, "One sublist per planar rigid wall, named freely");
   pl->sublist("Rigid Bodies", false, "One sublist per rigid body (sphere or projectile), named freely");
+  pl->set("Shells", *ShellContactParams::valid_parameters(), "Contact between the shells (theory.md §12.5)");
   return pl;
 }
 
@@ -127,6 +152,7 @@ ContactParams ContactParams::from_parameters(Teuchos::ParameterList& pl, const p
   c.penalty_scale = pl.get<double>("Penalty Scale");
   c.walls = named_entries<RigidWall>(pl.sublist("Rigid Walls"), "Point, Normal, Velocity", ctx / "Rigid Walls");
   c.bodies = named_entries<RigidBody>(pl.sublist("Rigid Bodies"), "Shape, Radius, Point, ...", ctx / "Rigid Bodies");
+  c.shells = ShellContactParams::from_parameters(pl.sublist("Shells"), ctx / "Shells");
   std::set<std::string> names;
   for (const auto& w : c.walls) names.insert(w.name);
   for (const auto& b : c.bodies)

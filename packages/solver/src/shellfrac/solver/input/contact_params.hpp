@@ -49,12 +49,24 @@ struct RigidBody {
   static RigidBody from_parameters(const std::string& name, Teuchos::ParameterList& pl, const params::Context& ctx);
 };
 
+/// "Contact->Shells": contact between the shells themselves (docs/theory.md §12.5): every DG position node of a
+/// listed block against the mid-surfaces of the other elements of the listed blocks, at the offset (h_A + h_B) / 2.
+struct ShellContactParams {
+  std::vector<std::string> blocks;  ///< the blocks in contact; {"all"}: every block; empty: no shell contact
+  double penalty_scale = 0.1;       ///< s of a pair's stiffness s mu / dt^2 (theory.md §12.5)
+  double search_margin = 0;         ///< of the candidate lists [length]; 0: the largest thickness in contact
+  bool enabled() const { return !blocks.empty(); }
+  static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
+  static ShellContactParams from_parameters(Teuchos::ParameterList& pl, const params::Context& ctx);
+};
+
 /// "Contact": the walls and bodies, and the penalty k = Penalty Scale m / dt^2 of each DG node of mass m (docs/theory.md
 /// §12.2: with the default safety factor the step stays stable, which the set-up checks).
 struct ContactParams {
   double penalty_scale = 0.25;
   std::vector<RigidWall> walls;
   std::vector<RigidBody> bodies;
+  ShellContactParams shells;
   /// The sublist without its user-named walls (those are validated one by one, RigidWall::valid_parameters).
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
   /// The whole sublist, walls included. InputError for any problem.

@@ -13,6 +13,7 @@ struct PhaseTimes {
   double exchange = 0;   ///< ghost exchange of positions/directors and of the flux buffers (incl. packing)
   double update = 0;     ///< predictor, director update, loads, accelerations, corrector, checks
   double nucleation = 0; ///< fracture: the nucleation check of intact edges and activation (part of update)
+  double contact = 0;    ///< contact between the shells: search, ghost faces, forces (part of update)
 };
 
 /// Adds the wall time of its scope to a counter.

@@ -17,6 +17,7 @@
 #include "shellfrac/solver/model/shell_model.hpp"
 #include "shellfrac/solver/contact/rigid_bodies.hpp"
 #include "shellfrac/solver/contact/rigid_walls.hpp"
+#include "shellfrac/solver/contact/shell_contact.hpp"
 #include "shellfrac/solver/step/constraints.hpp"
 #include "shellfrac/solver/step/force_assembly.hpp"
 #include "shellfrac/solver/step/loads.hpp"
@@ -167,7 +168,8 @@ Accelerate accelerations(const ShellModel& model, const Constraints& constraints
 }  // namespace
 
 CentralDifference::CentralDifference(ShellModel& model, Constraints& constraints, const Loads& loads,
-                                     const RigidWalls& walls, const RigidBodies& bodies, ForceAssembly& assembly,
+                                     const RigidWalls& walls, const RigidBodies& bodies, ShellContact& shells,
+                                     ForceAssembly& assembly,
                                      Fracture& fracture,
                                      PhaseTimes& times, double mass_damping, Relaxation relaxation)
     : model_(model),
@@ -175,6 +177,7 @@ CentralDifference::CentralDifference(ShellModel& model, Constraints& constraints
       loads_(loads),
       walls_(walls),
       bodies_(bodies),
+      shells_(shells),
       assembly_(assembly),
       fracture_(fracture),
       times_(times),
@@ -221,10 +224,14 @@ void CentralDifference::step(ShellState& s, double dt, double t1) {
   if (relaxation_.enabled) relax(s);
 }
 
-void CentralDifference::external_forces(double t, ShellState& s) const {
+void CentralDifference::external_forces(double t, ShellState& s) {
   loads_.external_forces(t, s, s.external_force, s.external_director_force);
   if (!walls_.empty()) walls_.add_forces(t, s, s.external_force);
   if (!bodies_.empty()) bodies_.add_forces(s, s.bodies, s.external_force);
+  if (shells_.enabled()) {
+    ScopedTimer timer(times_.contact);
+    shells_.add_forces(s, s.external_force);
+  }
 }
 
 // Static relaxation (docs/theory.md §7.5): when the global kinetic energy has passed a peak, the free velocities are

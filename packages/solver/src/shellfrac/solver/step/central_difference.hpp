@@ -17,6 +17,7 @@ class Fracture;
 class Loads;
 class RigidWalls;
 class RigidBodies;
+class ShellContact;
 struct ShellModel;
 
 class CentralDifference {
@@ -29,9 +30,9 @@ class CentralDifference {
   };
   /// `mass_damping`: alpha of the damping force alpha m v (dynamic relaxation; 0 = none).
   /// `walls`, `bodies`: the rigid walls and bodies, whose contact forces join the loads' (docs/theory.md §12);
-  /// the free bodies are integrated with the shells.
+  /// the free bodies are integrated with the shells; `shells`: the contact between the shells (§12.5).
   CentralDifference(ShellModel& model, Constraints& constraints, const Loads& loads, const RigidWalls& walls,
-                    const RigidBodies& bodies, ForceAssembly& assembly, Fracture& fracture, PhaseTimes& times, double mass_damping,
+                    const RigidBodies& bodies, ShellContact& shells, ForceAssembly& assembly, Fracture& fracture, PhaseTimes& times, double mass_damping,
                     Relaxation relaxation);
 
   /// Start-up (docs/theory.md §7.4): forces, loads, accelerations and reactions of the initial state.
@@ -52,9 +53,9 @@ class CentralDifference {
   void book_plastic_work(ShellState& s) const;
   void correct(ShellState& s, double dt, double t1);
   void check_finite(const ShellState& s) const;
-  /// The loads and the walls' and bodies' contact forces at time t (the bodies where s.bodies has them):
+  /// The loads and the contact forces at time t (the walls', the bodies' where s.bodies has them, the shells'):
   /// s.external_force, s.external_director_force, the bodies' forces and accelerations. Collective.
-  void external_forces(double t, ShellState& s) const;
+  void external_forces(double t, ShellState& s);
   void relax(ShellState& s);
   void reset_free_velocities(ShellState& s) const;
   double relative_residual(const ShellState& s) const;
@@ -64,6 +65,7 @@ class CentralDifference {
   const Loads& loads_;
   const RigidWalls& walls_;
   const RigidBodies& bodies_;
+  ShellContact& shells_;
   ForceAssembly& assembly_;
   Fracture& fracture_;
   PhaseTimes& times_;

@@ -1,0 +1,380 @@
+#include "shellfrac/solver/contact/shell_contact.hpp"
+
+#include <Kokkos_Core.hpp>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "shellfrac/core/error.hpp"
+#include "shellfrac/core/exact_sum.hpp"
+#include "shellfrac/decomposition/distributed_mesh.hpp"
+#include "shellfrac/solver/contact/closest_point.hpp"
+#include "shellfrac/solver/contact/contact_penalty.hpp"
+#include "shellfrac/solver/model/kernel_views.hpp"
+#include "shellfrac/solver/model/shell_model.hpp"
+
+namespace shellfrac::solver {
+
+namespace {
+
+constexpr int face_values = position_nodes * 3;  // 18: a face's six nodes
+/// The four linear sub-triangles of a TRI6 (nodes 3, 4, 5 on edges 0-1, 1-2, 2-0).
+constexpr int sub_triangles[4][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}, {3, 4, 5}};
+/// A reaction record: face gid, node gid, face node, force (3), stiffness share k w (for the stability bound).
+constexpr int reaction_values = 7;
+
+/// Sends `send[q]` (values per rank) to every rank and returns what each sends here, concatenated in rank order.
+std::vector<double> all_to_all(const std::vector<std::vector<double>>& send, MPI_Comm comm) {
+  const int P = static_cast<int>(send.size());
+  std::vector<int> send_count(P), receive_count(P), send_offset(P + 1, 0), receive_offset(P + 1, 0);
+  for (int q = 0; q < P; ++q) send_count[q] = static_cast<int>(send[q].size());
+  MPI_Alltoall(send_count.data(), 1, MPI_INT, receive_count.data(), 1, MPI_INT, comm);
+  for (int q = 0; q < P; ++q)
+    send_offset[q + 1] = send_offset[q] + send_count[q], receive_offset[q + 1] = receive_offset[q] + receive_count[q];
+  std::vector<double> out_buffer(static_cast<std::size_t>(send_offset[P])), in(static_cast<std::size_t>(receive_offset[P]));
+  for (int q = 0; q < P; ++q) std::copy(send[q].begin(), send[q].end(), out_buffer.begin() + send_offset[q]);
+  MPI_Alltoallv(out_buffer.data(), send_count.data(), send_offset.data(), MPI_DOUBLE, in.data(),
+                receive_count.data(), receive_offset.data(), MPI_DOUBLE, comm);
+  return in;
+}
+
+}  // namespace
+
+ShellContact::ShellContact(const ContactParams& params, const ShellModel& model, double dt,
+                           const std::vector<std::string>& block_names, const std::string& file)
+    : model_(model), in_contact_(block_names.size(), 0) {
+  const ShellContactParams& p = params.shells;
+  const bool all = p.blocks.size() == 1 && p.blocks[0] == "all";
+  for (const std::string& name : p.blocks) {
+    if (all) break;
+    const auto it = std::find(block_names.begin(), block_names.end(), name);
+    std::ostringstream known;
+    for (const auto& b : block_names) known << " '" << b << "'";
+    SHELLFRAC_INPUT_REQUIRE(it != block_names.end(), file << ": 'Contact->Shells->Blocks' names the block '" << name
+                                                          << "', which the mesh does not have (its blocks:"
+                                                          << known.str() << "; or {all})");
+    in_contact_[std::size_t(it - block_names.begin())] = 1;
+  }
+  if (all) std::fill(in_contact_.begin(), in_contact_.end(), 1);
+  enabled_ = std::find(in_contact_.begin(), in_contact_.end(), 1) != in_contact_.end();
+  if (!enabled_) return;
+  check_contact_penalty(p.penalty_scale, dt, model.stable_dt, file, "Contact->Shells->Penalty Scale");
+  penalty_per_dt2_ = p.penalty_scale / (dt * dt);
+  const double sf = dt / model.stable_dt;
+  step_room_ = (4 - 4 * sf * sf) / (dt * dt);
+  for (std::size_t b = 0; b < in_contact_.size(); ++b)
+    if (in_contact_[b]) max_half_thickness_ = std::max(max_half_thickness_, 0.5 * model.sections[b].thickness);
+  margin_ = p.search_margin > 0 ? p.search_margin : 2 * max_half_thickness_;
+  tie_ = 0.01 * max_half_thickness_;
+  for (LocalId le = 0; le < model.owned; ++le)
+    if (in_contact_[std::size_t(model.dm.element_block(le))]) nodes_of_.push_back(le);
+  contact_.resize(nodes_of_.size() * position_nodes);
+  bound_.resize(nodes_of_.size() * position_nodes);
+}
+
+void ShellContact::add_forces(const ShellState& s, PositionRows& fext) {
+  if (!enabled_) return;
+  pack_owned_positions(s);
+  if (!searched_ || moved_beyond_margin())
+    search();
+  else
+    exchange_ghost_positions();
+  find_contacts();
+  apply_forces(fext);
+}
+
+void ShellContact::pack_owned_positions(const ShellState& s) {
+  face_x_.resize(std::max(face_x_.size(), nodes_of_.size() * face_values));
+  for (std::size_t i = 0; i < nodes_of_.size(); ++i)
+    std::copy(s.x.at(nodes_of_[i], 0), s.x.at(nodes_of_[i], 0) + face_values, face_x_.begin() + i * face_values);
+}
+
+bool ShellContact::moved_beyond_margin() const {
+  const double limit = 0.25 * margin_ * margin_;  // (margin / 2)^2
+  int moved = 0;
+  for (std::size_t k = 0; k < nodes_of_.size() * position_nodes && !moved; ++k) {
+    double d2 = 0;
+    for (int c = 0; c < 3; ++c) d2 += (face_x_[3 * k + c] - x_search_[3 * k + c]) * (face_x_[3 * k + c] - x_search_[3 * k + c]);
+    moved = d2 > limit;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &moved, 1, MPI_INT, MPI_MAX, model_.dm.comm());
+  return moved != 0;
+}
+
+// The candidate lists (theory.md §12.5). A node can only meet a face within its reach c_A + c_F of it; while no node
+// has moved more than half the margin since the search, no face has come nearer to a node than it was at the search
+// less the margin, so a face whose box (grown by c_F) is farther than c_A + margin from the node at the search cannot
+// be in contact before the next search. The same argument, with this rank's nodes' box, picks the other ranks' faces
+// this rank needs: the contact ghosts. The reach also covers the tie band of find_contacts (faces within `tie` of the
+// nearest contact's gap), so that the face chosen is a function of the faces near the node only.
+void ShellContact::search() {
+  const auto& dm = model_.dm;
+  const int P = dm.num_ranks(), me = dm.rank();
+  const std::size_t owned_faces = nodes_of_.size();
+  faces_.resize(owned_faces);
+  for (std::size_t i = 0; i < owned_faces; ++i) {
+    const LocalId le = nodes_of_[i];
+    Face& f = faces_[i];
+    f.gid = dm.element_gid(le), f.local = le, f.owner = me;
+    f.half_thickness = 0.5 * model_.sections[std::size_t(dm.element_block(le))].thickness;
+    f.min_mass = *model_.mass.at(le, 0);
+    for (int A = 1; A < position_nodes; ++A) f.min_mass = std::min(f.min_mass, *model_.mass.at(le, A));
+    for (int v = 0; v < 3; ++v) f.vertex[v] = dm.mesh_node(le, v);
+  }
+  x_search_.assign(face_x_.begin(), face_x_.begin() + std::ptrdiff_t(owned_faces * face_values));
+
+  // Every rank's reach: the box of its nodes grown by the largest c_A plus the margin (empty: a flag of 0).
+  std::vector<double> reach(7 * std::size_t(P), 0.0);
+  if (owned_faces > 0) {
+    const Box b = Box::around(face_x_.data(), int(owned_faces * position_nodes)).inflated(max_half_thickness_ + margin_ + tie_);
+    for (int c = 0; c < 3; ++c) reach[7 * std::size_t(me) + std::size_t(c)] = b.lo[c], reach[7 * std::size_t(me) + 3 + std::size_t(c)] = b.hi[c];
+    reach[7 * std::size_t(me) + 6] = 1;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, reach.data(), int(reach.size()), MPI_DOUBLE, MPI_SUM, dm.comm());
+  std::vector<Box> face_boxes(owned_faces);
+  for (std::size_t i = 0; i < owned_faces; ++i)
+    face_boxes[i] = Box::around(&face_x_[i * face_values], position_nodes).inflated(faces_[i].half_thickness);
+  send_.assign(std::size_t(P), {});
+  std::vector<std::vector<double>> send_faces(static_cast<std::size_t>(P));
+  for (int q = 0; q < P; ++q) {
+    if (q == me || reach[7 * std::size_t(q) + 6] == 0) continue;
+    Box r;
+    for (int c = 0; c < 3; ++c) r.lo[c] = reach[7 * std::size_t(q) + std::size_t(c)], r.hi[c] = reach[7 * std::size_t(q) + 3 + std::size_t(c)];
+    for (std::size_t i = 0; i < owned_faces; ++i) {
+      if (!face_boxes[i].overlaps(r)) continue;
+      const Face& f = faces_[i];
+      send_[std::size_t(q)].push_back(LocalId(i));
+      send_faces[std::size_t(q)].insert(send_faces[std::size_t(q)].end(),
+                                        {double(f.gid), f.half_thickness, f.min_mass, double(f.vertex[0]),
+                                         double(f.vertex[1]), double(f.vertex[2]), double(me)});
+    }
+  }
+  const std::vector<double> ghosts = all_to_all(send_faces, dm.comm());
+  for (std::size_t k = 0; k < ghosts.size(); k += 7) {
+    Face f;
+    f.gid = GlobalId(ghosts[k]), f.half_thickness = ghosts[k + 1], f.min_mass = ghosts[k + 2];
+    for (int v = 0; v < 3; ++v) f.vertex[v] = GlobalId(ghosts[k + 3 + std::size_t(v)]);
+    f.owner = int(ghosts[k + 6]);
+    faces_.push_back(f);
+  }
+  face_x_.resize(faces_.size() * face_values);
+  exchange_ghost_positions();
+  for (std::size_t i = owned_faces; i < faces_.size(); ++i)
+    face_boxes.push_back(Box::around(&face_x_[i * face_values], position_nodes).inflated(faces_[i].half_thickness));
+
+  const BinGrid grid(std::move(face_boxes), margin_ + 2 * max_half_thickness_);
+  const std::size_t nodes = owned_faces * position_nodes;
+  std::vector<std::vector<int>> lists(nodes);
+  const Face* faces = faces_.data();
+  const double* x = face_x_.data();
+  const double node_reach = margin_ + tie_;  // the tie band too: every face within it of a contact is a candidate
+  Kokkos::parallel_for("shellfrac::ContactCandidates", KernelRange(0, nodes), [&](const std::size_t k) {
+    const Face& own = faces[k / position_nodes];
+    const Box q = Box::around(x + 3 * k, 1).inflated(own.half_thickness + node_reach);
+    std::vector<int>& list = lists[k];
+    for (int j : grid.overlapping(q)) {
+      const Face& f = faces[j];
+      bool shares_vertex = false;
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) shares_vertex = shares_vertex || own.vertex[a] == f.vertex[b];
+      if (!shares_vertex) list.push_back(j);
+    }
+    std::sort(list.begin(), list.end(), [&](int a, int b) { return faces[a].gid < faces[b].gid; });
+  });
+  candidate_offset_.assign(1, 0);
+  candidates_.clear();
+  for (const auto& list : lists) {
+    candidates_.insert(candidates_.end(), list.begin(), list.end());
+    candidate_offset_.push_back(int(candidates_.size()));
+  }
+  searched_ = true;
+  ++searches_;
+}
+
+void ShellContact::exchange_ghost_positions() {
+  const int P = model_.dm.num_ranks();
+  std::vector<std::vector<double>> send(static_cast<std::size_t>(P));
+  for (int q = 0; q < P; ++q)
+    for (LocalId i : send_[std::size_t(q)])
+      send[std::size_t(q)].insert(send[std::size_t(q)].end(), face_x_.begin() + std::ptrdiff_t(i) * face_values,
+                                  face_x_.begin() + std::ptrdiff_t(i + 1) * face_values);
+  const std::vector<double> in = all_to_all(send, model_.dm.comm());
+  std::copy(in.begin(), in.end(), face_x_.begin() + std::ptrdiff_t(nodes_of_.size() * face_values));
+}
+
+namespace {
+
+/// The nearest point of face `fx` (18 values) to p: its sub-triangle, weights, point and distance.
+struct FacePoint {
+  int sub = 0;
+  double w[3] = {0, 0, 0}, y[3] = {0, 0, 0}, distance = 0;
+};
+
+FacePoint nearest_point_of_face(const double* p, const double* fx) {
+  FacePoint best;
+  best.distance = std::numeric_limits<double>::infinity();
+  for (int sub = 0; sub < 4; ++sub) {
+    const double* a = fx + 3 * sub_triangles[sub][0];
+    const double* b = fx + 3 * sub_triangles[sub][1];
+    const double* c = fx + 3 * sub_triangles[sub][2];
+    const TrianglePoint t = closest_point_on_triangle(p, a, b, c);
+    double y[3], d2 = 0;
+    for (int i = 0; i < 3; ++i) y[i] = t.w[0] * a[i] + t.w[1] * b[i] + t.w[2] * c[i], d2 += (p[i] - y[i]) * (p[i] - y[i]);
+    const double d = std::sqrt(d2);
+    if (d < best.distance) {
+      best.sub = sub, best.distance = d;
+      for (int i = 0; i < 3; ++i) best.w[i] = t.w[i], best.y[i] = y[i];
+    }
+  }
+  return best;
+}
+
+/// The squared distance between the centroids of the vertices of two faces (18 values each).
+double centroid_distance2(const double* f, const double* g) {
+  double d2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double d = (f[i] + f[3 + i] + f[6 + i] - g[i] - g[3 + i] - g[6 + i]) / 3;
+    d2 += d * d;
+  }
+  return d2;
+}
+
+}  // namespace
+
+// Per node (a Kokkos kernel: each iteration writes its own node's result only). The face is the nearest one, except
+// that among the faces within `tie` of the nearest gap the one whose centre is nearest to the node's own element's
+// wins (theory.md §12.5): where the node meets a vertex or an edge of the other surface, every DG copy of that vertex
+// is equally near, and the rule gives each element's nodes the element opposite, instead of piling every node on the
+// copy of the lowest id. A function of the set of faces within reach, so of neither the search's timing nor the ranks.
+void ShellContact::find_contacts() {
+  const Face* faces = faces_.data();
+  const double* x = face_x_.data();
+  const int* offset = candidate_offset_.data();
+  const int* candidates = candidates_.data();
+  NodeContact* out = contact_.data();
+  const double* mass = model_.mass.data();
+  const LocalId* element = nodes_of_.data();
+  const double penalty = penalty_per_dt2_, tie = tie_;
+  Kokkos::parallel_for("shellfrac::ShellContact", KernelRange(0, contact_.size()), [=](const std::size_t k) {
+    const std::size_t e = k / position_nodes;
+    const Face& own = faces[e];
+    const double* p = x + 3 * k;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int n = offset[k]; n < offset[k + 1]; ++n) {
+      const int j = candidates[n];
+      const FacePoint fp = nearest_point_of_face(p, x + std::size_t(j) * face_values);
+      nearest = std::min(nearest, fp.distance - (own.half_thickness + faces[j].half_thickness));
+    }
+    out[k] = NodeContact{};
+    if (!(nearest < 0)) return;
+    NodeContact best;
+    FacePoint best_point;
+    double best_centre = std::numeric_limits<double>::infinity();
+    for (int n = offset[k]; n < offset[k + 1]; ++n) {
+      const int j = candidates[n];
+      const double* fx = x + std::size_t(j) * face_values;
+      const FacePoint fp = nearest_point_of_face(p, fx);
+      const double gap = fp.distance - (own.half_thickness + faces[j].half_thickness);
+      if (gap > nearest + tie) continue;
+      const double centre = centroid_distance2(x + e * face_values, fx);
+      if (centre < best_centre) best_centre = centre, best.face = j, best.gap = gap, best_point = fp;
+    }
+    best.sub = best_point.sub;
+    for (int i = 0; i < 3; ++i) best.w[i] = best_point.w[i];
+    if (best_point.distance > 0) {
+      for (int i = 0; i < 3; ++i) best.normal[i] = (p[i] - best_point.y[i]) / best_point.distance;
+    } else {  // the node is on the face's mid-surface: push it along the sub-triangle's normal
+      const double* fx = x + std::size_t(best.face) * face_values;
+      const double *a = fx + 3 * sub_triangles[best.sub][0], *b = fx + 3 * sub_triangles[best.sub][1],
+                   *c = fx + 3 * sub_triangles[best.sub][2];
+      const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+      double nrm[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+      const double l = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+      for (int i = 0; i < 3; ++i) best.normal[i] = l > 0 ? nrm[i] / l : (i == 2 ? 1.0 : 0.0);
+    }
+    // k = s m_A / (2 dt^2): a node and a face node of equal mass vibrate against each other at sqrt(s) / dt.
+    best.stiffness = 0.5 * penalty * mass[std::size_t(element[e]) * position_nodes + k % position_nodes];
+    out[k] = best;
+  });
+}
+
+// The forces: each node's own first, then the reactions on each face node in the order of (face gid, node gid, face
+// node), whichever rank computed them. The stability bound per node is Gershgorin's on M^-1 K (theory.md §12.5).
+void ShellContact::apply_forces(PositionRows& fext) {
+  const auto& dm = model_.dm;
+  const int P = dm.num_ranks();
+  std::vector<std::vector<double>> send(static_cast<std::size_t>(P));
+  reactions_.clear();
+  std::fill(bound_.begin(), bound_.end(), 0.0);
+  for (std::size_t k = 0; k < contact_.size(); ++k) {
+    const NodeContact& c = contact_[k];
+    if (c.face < 0) continue;
+    const LocalId le = nodes_of_[k / position_nodes];
+    const int A = int(k % position_nodes);
+    const double f = -c.stiffness * c.gap;
+    double* fe = fext.at(le, A);
+    for (int i = 0; i < 3; ++i) fe[i] += f * c.normal[i];
+    bound_[k] += 2 * c.stiffness / *model_.mass.at(le, A);
+    const Face& face = faces_[std::size_t(c.face)];
+    std::vector<double>& to = face.local >= 0 ? reactions_ : send[std::size_t(face.owner)];
+    for (int j = 0; j < 3; ++j)
+      to.insert(to.end(), {double(face.gid), double(dm.dg_node_gid(le, A)), double(sub_triangles[c.sub][j]),
+                           -c.w[j] * f * c.normal[0], -c.w[j] * f * c.normal[1], -c.w[j] * f * c.normal[2],
+                           c.w[j] * c.stiffness});
+  }
+  const std::vector<double> received = all_to_all(send, dm.comm());
+  reactions_.insert(reactions_.end(), received.begin(), received.end());
+  const std::size_t n = reactions_.size() / reaction_values;
+  order_.resize(n);
+  for (std::size_t r = 0; r < n; ++r) order_[r] = r;
+  const double* R = reactions_.data();
+  std::sort(order_.begin(), order_.end(), [R](std::size_t a, std::size_t b) {
+    const double* x = R + a * reaction_values;
+    const double* y = R + b * reaction_values;
+    return std::lexicographical_compare(x, x + 3, y, y + 3);
+  });
+  for (std::size_t r : order_) {
+    const double* rec = R + r * reaction_values;
+    const LocalId le = dm.local_id(GlobalId(rec[0]));
+    const int node = int(rec[2]);
+    double* fe = fext.at(le, node);
+    for (int i = 0; i < 3; ++i) fe[i] += rec[3 + i];
+    const std::size_t slot = std::size_t(std::lower_bound(nodes_of_.begin(), nodes_of_.end(), le) - nodes_of_.begin());
+    bound_[slot * position_nodes + std::size_t(node)] += 2 * rec[6] / *model_.mass.at(le, node);
+  }
+  check_stability();
+}
+
+void ShellContact::check_stability() const {
+  double worst = 0;
+  for (double b : bound_) worst = std::max(worst, b);
+  MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_DOUBLE, MPI_MAX, model_.dm.comm());
+  if (worst < step_room_) return;
+  GlobalId where = std::numeric_limits<GlobalId>::max();
+  for (std::size_t k = 0; k < bound_.size(); ++k)
+    if (bound_[k] == worst) where = std::min(where, model_.dm.element_gid(nodes_of_[k / position_nodes]));
+  MPI_Allreduce(MPI_IN_PLACE, &where, 1, MPI_INT64_T, MPI_MIN, model_.dm.comm());
+  std::ostringstream os;
+  os << "shell contact: the contacts on " << model_.element_name(where) << " pile up so that the step is unstable "
+     << "(their stiffness adds " << worst / step_room_ << " of what the time step leaves free, theory.md §12.5); "
+     << "lower 'Contact->Shells->Penalty Scale' or the 'Time Integration->Safety Factor'";
+  throw NumericalError(os.str());
+}
+
+std::vector<std::string> ShellContact::history_columns() const {
+  if (!enabled_) return {};
+  return {"shell_contact_energy", "shell_contact_nodes"};
+}
+
+std::vector<double> ShellContact::history_values() const {
+  if (!enabled_) return {};
+  ExactSum energy, nodes;
+  for (const NodeContact& c : contact_)
+    if (c.face >= 0) energy.add(0.5 * c.stiffness * c.gap * c.gap), nodes.add(1);
+  std::vector<ExactSum> sums{energy, nodes};
+  ExactSum::allreduce(sums, model_.dm.comm());
+  return {sums[0].value(), sums[1].value()};
+}
+
+}  // namespace shellfrac::solver
