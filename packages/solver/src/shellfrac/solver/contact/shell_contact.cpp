@@ -39,6 +39,42 @@ std::vector<double> all_to_all(const std::vector<std::vector<double>>& send, MPI
   return in;
 }
 
+
+/// The nearest point of face `fx` (18 values) to p: its sub-triangle, weights, point and distance.
+struct FacePoint {
+  int sub = 0;
+  double w[3] = {0, 0, 0}, y[3] = {0, 0, 0}, distance = 0;
+};
+
+FacePoint nearest_point_of_face(const double* p, const double* fx) {
+  FacePoint best;
+  best.distance = std::numeric_limits<double>::infinity();
+  for (int sub = 0; sub < 4; ++sub) {
+    const double* a = fx + 3 * sub_triangles[sub][0];
+    const double* b = fx + 3 * sub_triangles[sub][1];
+    const double* c = fx + 3 * sub_triangles[sub][2];
+    const TrianglePoint t = closest_point_on_triangle(p, a, b, c);
+    double y[3], d2 = 0;
+    for (int i = 0; i < 3; ++i) y[i] = t.w[0] * a[i] + t.w[1] * b[i] + t.w[2] * c[i], d2 += (p[i] - y[i]) * (p[i] - y[i]);
+    const double d = std::sqrt(d2);
+    if (d < best.distance) {
+      best.sub = sub, best.distance = d;
+      for (int i = 0; i < 3; ++i) best.w[i] = t.w[i], best.y[i] = y[i];
+    }
+  }
+  return best;
+}
+
+/// The squared distance between the centroids of the vertices of two faces (18 values each).
+double centroid_distance2(const double* f, const double* g) {
+  double d2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double d = (f[i] + f[3 + i] + f[6 + i] - g[i] - g[3 + i] - g[6 + i]) / 3;
+    d2 += d * d;
+  }
+  return d2;
+}
+
 }  // namespace
 
 ShellContact::ShellContact(const ContactParams& params, const ShellModel& model, double dt,
@@ -118,11 +154,14 @@ void ShellContact::search() {
     Face& f = faces_[i];
     f.gid = dm.element_gid(le), f.local = le, f.owner = me;
     f.half_thickness = 0.5 * model_.sections[std::size_t(dm.element_block(le))].thickness;
-    f.min_mass = *model_.mass.at(le, 0);
-    for (int A = 1; A < position_nodes; ++A) f.min_mass = std::min(f.min_mass, *model_.mass.at(le, A));
+    f.mean_mass = 0;
+    for (int A = 0; A < position_nodes; ++A) f.mean_mass += *model_.mass.at(le, A) / position_nodes;
     for (int v = 0; v < 3; ++v) f.vertex[v] = dm.mesh_node(le, v);
   }
   x_search_.assign(face_x_.begin(), face_x_.begin() + std::ptrdiff_t(owned_faces * face_values));
+  face_X_.resize(owned_faces * face_values);
+  for (std::size_t i = 0; i < owned_faces; ++i)
+    std::copy(model_.X.at(nodes_of_[i]), model_.X.at(nodes_of_[i]) + face_values, face_X_.begin() + std::ptrdiff_t(i * face_values));
 
   // Every rank's reach: the box of its nodes grown by the largest c_A plus the margin (empty: a flag of 0).
   std::vector<double> reach(7 * std::size_t(P), 0.0);
@@ -145,18 +184,21 @@ void ShellContact::search() {
       if (!face_boxes[i].overlaps(r)) continue;
       const Face& f = faces_[i];
       send_[std::size_t(q)].push_back(LocalId(i));
-      send_faces[std::size_t(q)].insert(send_faces[std::size_t(q)].end(),
-                                        {double(f.gid), f.half_thickness, f.min_mass, double(f.vertex[0]),
-                                         double(f.vertex[1]), double(f.vertex[2]), double(me)});
+      std::vector<double>& out = send_faces[std::size_t(q)];
+      out.insert(out.end(), {double(f.gid), f.half_thickness, f.mean_mass, double(f.vertex[0]), double(f.vertex[1]),
+                             double(f.vertex[2]), double(me)});
+      out.insert(out.end(), face_X_.begin() + std::ptrdiff_t(i * face_values),
+                 face_X_.begin() + std::ptrdiff_t((i + 1) * face_values));
     }
   }
   const std::vector<double> ghosts = all_to_all(send_faces, dm.comm());
-  for (std::size_t k = 0; k < ghosts.size(); k += 7) {
+  for (std::size_t k = 0; k < ghosts.size(); k += 7 + face_values) {
     Face f;
-    f.gid = GlobalId(ghosts[k]), f.half_thickness = ghosts[k + 1], f.min_mass = ghosts[k + 2];
+    f.gid = GlobalId(ghosts[k]), f.half_thickness = ghosts[k + 1], f.mean_mass = ghosts[k + 2];
     for (int v = 0; v < 3; ++v) f.vertex[v] = GlobalId(ghosts[k + 3 + std::size_t(v)]);
     f.owner = int(ghosts[k + 6]);
     faces_.push_back(f);
+    face_X_.insert(face_X_.end(), ghosts.begin() + std::ptrdiff_t(k + 7), ghosts.begin() + std::ptrdiff_t(k + 7 + face_values));
   }
   face_x_.resize(faces_.size() * face_values);
   exchange_ghost_positions();
@@ -168,6 +210,7 @@ void ShellContact::search() {
   std::vector<std::vector<int>> lists(nodes);
   const Face* faces = faces_.data();
   const double* x = face_x_.data();
+  const double* X = face_X_.data();
   const double node_reach = margin_ + tie_;  // the tie band too: every face within it of a contact is a candidate
   Kokkos::parallel_for("shellfrac::ContactCandidates", KernelRange(0, nodes), [&](const std::size_t k) {
     const Face& own = faces[k / position_nodes];
@@ -178,7 +221,12 @@ void ShellContact::search() {
       bool shares_vertex = false;
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) shares_vertex = shares_vertex || own.vertex[a] == f.vertex[b];
-      if (!shares_vertex) list.push_back(j);
+      if (shares_vertex) continue;
+      // Shells that overlap in the reference configuration (a thick shell's neighbours beyond the vertex ring,
+      // parts placed inside each other) never contact: the pair is the shell itself, not two surfaces meeting.
+      const FacePoint ref = nearest_point_of_face(X + 3 * k, X + std::size_t(j) * face_values);
+      if (ref.distance < own.half_thickness + f.half_thickness) continue;
+      list.push_back(j);
     }
     std::sort(list.begin(), list.end(), [&](int a, int b) { return faces[a].gid < faces[b].gid; });
   });
@@ -203,44 +251,6 @@ void ShellContact::exchange_ghost_positions() {
   std::copy(in.begin(), in.end(), face_x_.begin() + std::ptrdiff_t(nodes_of_.size() * face_values));
 }
 
-namespace {
-
-/// The nearest point of face `fx` (18 values) to p: its sub-triangle, weights, point and distance.
-struct FacePoint {
-  int sub = 0;
-  double w[3] = {0, 0, 0}, y[3] = {0, 0, 0}, distance = 0;
-};
-
-FacePoint nearest_point_of_face(const double* p, const double* fx) {
-  FacePoint best;
-  best.distance = std::numeric_limits<double>::infinity();
-  for (int sub = 0; sub < 4; ++sub) {
-    const double* a = fx + 3 * sub_triangles[sub][0];
-    const double* b = fx + 3 * sub_triangles[sub][1];
-    const double* c = fx + 3 * sub_triangles[sub][2];
-    const TrianglePoint t = closest_point_on_triangle(p, a, b, c);
-    double y[3], d2 = 0;
-    for (int i = 0; i < 3; ++i) y[i] = t.w[0] * a[i] + t.w[1] * b[i] + t.w[2] * c[i], d2 += (p[i] - y[i]) * (p[i] - y[i]);
-    const double d = std::sqrt(d2);
-    if (d < best.distance) {
-      best.sub = sub, best.distance = d;
-      for (int i = 0; i < 3; ++i) best.w[i] = t.w[i], best.y[i] = y[i];
-    }
-  }
-  return best;
-}
-
-/// The squared distance between the centroids of the vertices of two faces (18 values each).
-double centroid_distance2(const double* f, const double* g) {
-  double d2 = 0;
-  for (int i = 0; i < 3; ++i) {
-    const double d = (f[i] + f[3 + i] + f[6 + i] - g[i] - g[3 + i] - g[6 + i]) / 3;
-    d2 += d * d;
-  }
-  return d2;
-}
-
-}  // namespace
 
 // Per node (a Kokkos kernel: each iteration writes its own node's result only). The face is the nearest one, except
 // that among the faces within `tie` of the nearest gap the one whose centre is nearest to the node's own element's
@@ -280,6 +290,7 @@ void ShellContact::find_contacts() {
       const double centre = centroid_distance2(x + e * face_values, fx);
       if (centre < best_centre) best_centre = centre, best.face = j, best.gap = gap, best_point = fp;
     }
+    if (!(best.gap < 0)) return;  // the face chosen in the tie band is not touched: no force (never a pull)
     best.sub = best_point.sub;
     for (int i = 0; i < 3; ++i) best.w[i] = best_point.w[i];
     if (best_point.distance > 0) {
@@ -293,8 +304,11 @@ void ShellContact::find_contacts() {
       const double l = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
       for (int i = 0; i < 3; ++i) best.normal[i] = l > 0 ? nrm[i] / l : (i == 2 ? 1.0 : 0.0);
     }
-    // k = s m_A / (2 dt^2): a node and a face node of equal mass vibrate against each other at sqrt(s) / dt.
-    best.stiffness = 0.5 * penalty * mass[std::size_t(element[e]) * position_nodes + k % position_nodes];
+    // k = s m_A mbar_F / ((mbar_A + mbar_F) dt^2), mbar the elements' mean node masses: the same k / m_A on every node
+    // of an element, half the wall's between equal elements, and a heavy element's nodes do not press a light one's
+    // harder than it can take (theory.md §12.5).
+    const double mA = mass[std::size_t(element[e]) * position_nodes + k % position_nodes];
+    best.stiffness = penalty * mA * faces[best.face].mean_mass / (own.mean_mass + faces[best.face].mean_mass);
     out[k] = best;
   });
 }

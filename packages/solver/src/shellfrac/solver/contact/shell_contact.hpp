@@ -6,7 +6,8 @@
 /// is closer than the two half-thicknesses, g = d(x_A, F) - (h_A + h_F)/2 < 0, by the penalty force k <-g> n along
 /// the direction from the face's nearest point to the node; the face's nodes take the reaction, shared by the
 /// nearest point's weights. Elements that share a vertex of the mesh never contact each other (intact, they are one
-/// surface; across a separated edge the crack faces meet edge-on, which is the crack-face contact of §9.9).
+/// surface; across a separated edge the crack faces meet edge-on, which is the crack-face contact of §9.9), nor do a
+/// node and a face that overlap in the reference configuration (a thick shell's near neighbours).
 ///
 /// Search: candidate lists (each node's faces within its reach plus a margin), rebuilt when a node has moved half
 /// the margin; faces by a bin grid (bin_grid.hpp). Parallel: the faces of other ranks within reach of this rank's
@@ -49,7 +50,7 @@ class ShellContact {
     LocalId local = -1;  ///< owned element's local id; -1 for a contact ghost
     int owner = 0;
     double half_thickness = 0;
-    double min_mass = 0;  ///< the smallest of its position nodes' masses
+    double mean_mass = 0;  ///< the mean of its position nodes' masses
     GlobalId vertex[3] = {-1, -1, -1};  ///< mesh vertices
   };
   /// A node's contact found by the last add_forces.
@@ -81,6 +82,7 @@ class ShellContact {
   std::vector<LocalId> nodes_of_;       ///< owned elements in contact (their 6 nodes are the nodes)
   std::vector<Face> faces_;             ///< owned ones first (in nodes_of_ order), then the contact ghosts
   std::vector<double> face_x_;          ///< 18 per face
+  std::vector<double> face_X_;          ///< the faces' reference positions, 18 per face
   std::vector<double> x_search_;        ///< the nodes' positions at the last search (18 per nodes_of_ entry)
   std::vector<int> candidate_offset_{0}, candidates_;  ///< per node: face indices, ascending face gid
   std::vector<std::vector<LocalId>> send_;  ///< per rank: owned faces (indices into faces_) sent as its ghosts

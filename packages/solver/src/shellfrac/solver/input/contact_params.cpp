@@ -114,9 +114,9 @@ Teuchos::RCP<const Teuchos::ParameterList> ShellContactParams::valid_parameters(
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("Shells"));
   pl->set("Blocks", Teuchos::Array<std::string>(),
           "The blocks whose shells contact each other (and themselves): block names, or {all}; empty: none");
-  pl->set("Penalty Scale", 0.1,
-          "A node's stiffness against another element's mid-surface is Penalty Scale mu / dt^2, mu the smaller "
-          "of the two sides' node masses halved (theory.md §12.5)",
+  pl->set("Penalty Scale", 0.05,
+          "A node of mass m_A has the stiffness Penalty Scale m_A mbar_F / ((mbar_A + mbar_F) dt^2) against another "
+          "element (mbar: the two elements' mean node masses; theory.md §12.5)",
           params::positive_double());
   pl->set("Search Margin", 0.0,
           "Margin of the contact candidate lists [length]; they are rebuilt when a node has moved half of it. "
