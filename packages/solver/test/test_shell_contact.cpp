@@ -9,7 +9,7 @@
 //    are pairs: a node's force and its face's reactions sum to zero), to round-off, 1e-12 M V; each plate's momentum
 //    after the contact is that of a 1-D elastic impact of two equal bodies, which exchanges the velocities: -+V, within
 //    1 % (the discrete switch in and out of contact of the central-difference recurrence: 0.6 % for the wall, theory.md
-//    §12.3; measured here +0.04 %); the energy balance (the contact's work is external work, §12.5) closes to 1e-3 of
+//    §12.3; measured here +0.02 %); the energy balance (the contact's work is external work, §12.5) closes to 1e-3 of
 //    the kinetic energy (the acceptance of the contact issue; measured 1e-16); the plates never interpenetrate: their
 //    mid-surfaces stay more than h/2 apart (the penetration at this speed is about V dt / sqrt(s) ~ 0.01 h).
 // 4. The same run on 1, 2 and 3 ranks: bitwise the same history and results (test (e)).

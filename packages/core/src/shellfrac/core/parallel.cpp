@@ -2,6 +2,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <exception>
 
 #include "shellfrac/core/error.hpp"
@@ -111,6 +112,24 @@ double max(double local, MPI_Comm comm) {
   double g = 0;
   MPI_Allreduce(&local, &g, 1, MPI_DOUBLE, MPI_MAX, comm);
   return g;
+}
+
+std::vector<double> all_to_all(const std::vector<std::vector<double>>& send, MPI_Comm comm) {
+  const int P = size(comm);
+  SHELLFRAC_REQUIRE(int(send.size()) == P, "all_to_all: " << send.size() << " send vectors for " << P << " ranks");
+  std::vector<int> send_count(static_cast<std::size_t>(P)), receive_count(static_cast<std::size_t>(P));
+  std::vector<int> send_offset(static_cast<std::size_t>(P) + 1, 0), receive_offset(static_cast<std::size_t>(P) + 1, 0);
+  for (int q = 0; q < P; ++q) send_count[std::size_t(q)] = static_cast<int>(send[std::size_t(q)].size());
+  MPI_Alltoall(send_count.data(), 1, MPI_INT, receive_count.data(), 1, MPI_INT, comm);
+  for (std::size_t q = 0; q < std::size_t(P); ++q)
+    send_offset[q + 1] = send_offset[q] + send_count[q], receive_offset[q + 1] = receive_offset[q] + receive_count[q];
+  std::vector<double> outgoing(static_cast<std::size_t>(send_offset[std::size_t(P)]));
+  std::vector<double> incoming(static_cast<std::size_t>(receive_offset[std::size_t(P)]));
+  for (std::size_t q = 0; q < std::size_t(P); ++q)
+    std::copy(send[q].begin(), send[q].end(), outgoing.begin() + send_offset[q]);
+  MPI_Alltoallv(outgoing.data(), send_count.data(), send_offset.data(), MPI_DOUBLE, incoming.data(),
+                receive_count.data(), receive_offset.data(), MPI_DOUBLE, comm);
+  return incoming;
 }
 
 template <class T>

@@ -102,6 +102,9 @@ bool any(bool local, MPI_Comm comm = MPI_COMM_WORLD);
 std::int64_t sum(std::int64_t local, MPI_Comm comm = MPI_COMM_WORLD);
 /// Max over ranks. Collective.
 double max(double local, MPI_Comm comm = MPI_COMM_WORLD);
+/// Sends send[q] to rank q (one vector per rank) and returns what every rank sent here, concatenated in rank order.
+/// Collective.
+std::vector<double> all_to_all(const std::vector<std::vector<double>>& send, MPI_Comm comm = MPI_COMM_WORLD);
 /// Gathers a variable-length vector of T from every rank onto every rank (rank order). Collective.
 template <class T>
 std::vector<T> all_gather(const std::vector<T>& local, MPI_Comm comm = MPI_COMM_WORLD);

@@ -8,6 +8,7 @@
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/exact_sum.hpp"
+#include "shellfrac/core/parallel.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/solver/contact/closest_point.hpp"
 #include "shellfrac/solver/contact/contact_penalty.hpp"
@@ -24,20 +25,6 @@ constexpr int sub_triangles[4][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}, {3, 4, 5}}
 /// A reaction record: face gid, node gid, face node, force (3), stiffness share k w (for the stability bound).
 constexpr int reaction_values = 7;
 
-/// Sends `send[q]` (values per rank) to every rank and returns what each sends here, concatenated in rank order.
-std::vector<double> all_to_all(const std::vector<std::vector<double>>& send, MPI_Comm comm) {
-  const int P = static_cast<int>(send.size());
-  std::vector<int> send_count(P), receive_count(P), send_offset(P + 1, 0), receive_offset(P + 1, 0);
-  for (int q = 0; q < P; ++q) send_count[q] = static_cast<int>(send[q].size());
-  MPI_Alltoall(send_count.data(), 1, MPI_INT, receive_count.data(), 1, MPI_INT, comm);
-  for (int q = 0; q < P; ++q)
-    send_offset[q + 1] = send_offset[q] + send_count[q], receive_offset[q + 1] = receive_offset[q] + receive_count[q];
-  std::vector<double> out_buffer(static_cast<std::size_t>(send_offset[P])), in(static_cast<std::size_t>(receive_offset[P]));
-  for (int q = 0; q < P; ++q) std::copy(send[q].begin(), send[q].end(), out_buffer.begin() + send_offset[q]);
-  MPI_Alltoallv(out_buffer.data(), send_count.data(), send_offset.data(), MPI_DOUBLE, in.data(),
-                receive_count.data(), receive_offset.data(), MPI_DOUBLE, comm);
-  return in;
-}
 
 
 /// The nearest point of face `fx` (18 values) to p: its sub-triangle, weights, point and distance.
@@ -128,14 +115,13 @@ void ShellContact::pack_owned_positions(const ShellState& s) {
 
 bool ShellContact::moved_beyond_margin() const {
   const double limit = 0.25 * margin_ * margin_;  // (margin / 2)^2
-  int moved = 0;
+  bool moved = false;
   for (std::size_t k = 0; k < nodes_of_.size() * position_nodes && !moved; ++k) {
     double d2 = 0;
     for (int c = 0; c < 3; ++c) d2 += (face_x_[3 * k + c] - x_search_[3 * k + c]) * (face_x_[3 * k + c] - x_search_[3 * k + c]);
     moved = d2 > limit;
   }
-  MPI_Allreduce(MPI_IN_PLACE, &moved, 1, MPI_INT, MPI_MAX, model_.dm.comm());
-  return moved != 0;
+  return parallel::any(moved, model_.dm.comm());
 }
 
 // The candidate lists (theory.md §12.5). A node can only meet a face within its reach c_A + c_F of it; while no node
@@ -164,13 +150,13 @@ void ShellContact::search() {
     std::copy(model_.X.at(nodes_of_[i]), model_.X.at(nodes_of_[i]) + face_values, face_X_.begin() + std::ptrdiff_t(i * face_values));
 
   // Every rank's reach: the box of its nodes grown by the largest c_A plus the margin (empty: a flag of 0).
-  std::vector<double> reach(7 * std::size_t(P), 0.0);
+  std::vector<double> mine(7, 0.0);
   if (owned_faces > 0) {
     const Box b = Box::around(face_x_.data(), int(owned_faces * position_nodes)).inflated(max_half_thickness_ + margin_ + tie_);
-    for (int c = 0; c < 3; ++c) reach[7 * std::size_t(me) + std::size_t(c)] = b.lo[c], reach[7 * std::size_t(me) + 3 + std::size_t(c)] = b.hi[c];
-    reach[7 * std::size_t(me) + 6] = 1;
+    for (std::size_t c = 0; c < 3; ++c) mine[c] = b.lo[c], mine[3 + c] = b.hi[c];
+    mine[6] = 1;
   }
-  MPI_Allreduce(MPI_IN_PLACE, reach.data(), int(reach.size()), MPI_DOUBLE, MPI_SUM, dm.comm());
+  const std::vector<double> reach = parallel::all_gather(mine, dm.comm());
   std::vector<Box> face_boxes(owned_faces);
   for (std::size_t i = 0; i < owned_faces; ++i)
     face_boxes[i] = Box::around(&face_x_[i * face_values], position_nodes).inflated(faces_[i].half_thickness);
@@ -191,7 +177,7 @@ void ShellContact::search() {
                  face_X_.begin() + std::ptrdiff_t((i + 1) * face_values));
     }
   }
-  const std::vector<double> ghosts = all_to_all(send_faces, dm.comm());
+  const std::vector<double> ghosts = parallel::all_to_all(send_faces, dm.comm());
   for (std::size_t k = 0; k < ghosts.size(); k += 7 + face_values) {
     Face f;
     f.gid = GlobalId(ghosts[k]), f.half_thickness = ghosts[k + 1], f.mean_mass = ghosts[k + 2];
@@ -208,15 +194,17 @@ void ShellContact::search() {
   const BinGrid grid(std::move(face_boxes), margin_ + 2 * max_half_thickness_);
   const std::size_t nodes = owned_faces * position_nodes;
   std::vector<std::vector<int>> lists(nodes);
+  std::vector<int>* list_of = lists.data();
+  const BinGrid* bins = &grid;  // read only: its queries are safe from any thread
   const Face* faces = faces_.data();
   const double* x = face_x_.data();
   const double* X = face_X_.data();
   const double node_reach = margin_ + tie_;  // the tie band too: every face within it of a contact is a candidate
-  Kokkos::parallel_for("shellfrac::ContactCandidates", KernelRange(0, nodes), [&](const std::size_t k) {
+  Kokkos::parallel_for("shellfrac::ContactCandidates", KernelRange(0, nodes), [=](const std::size_t k) {
     const Face& own = faces[k / position_nodes];
     const Box q = Box::around(x + 3 * k, 1).inflated(own.half_thickness + node_reach);
-    std::vector<int>& list = lists[k];
-    for (int j : grid.overlapping(q)) {
+    std::vector<int>& list = list_of[k];  // each iteration fills its own node's list only
+    for (int j : bins->overlapping(q)) {
       const Face& f = faces[j];
       bool shares_vertex = false;
       for (int a = 0; a < 3; ++a)
@@ -236,8 +224,8 @@ void ShellContact::search() {
     candidates_.insert(candidates_.end(), list.begin(), list.end());
     candidate_offset_.push_back(int(candidates_.size()));
   }
+  candidate_gap_.resize(candidates_.size());
   searched_ = true;
-  ++searches_;
 }
 
 void ShellContact::exchange_ghost_positions() {
@@ -247,7 +235,7 @@ void ShellContact::exchange_ghost_positions() {
     for (LocalId i : send_[std::size_t(q)])
       send[std::size_t(q)].insert(send[std::size_t(q)].end(), face_x_.begin() + std::ptrdiff_t(i) * face_values,
                                   face_x_.begin() + std::ptrdiff_t(i + 1) * face_values);
-  const std::vector<double> in = all_to_all(send, model_.dm.comm());
+  const std::vector<double> in = parallel::all_to_all(send, model_.dm.comm());
   std::copy(in.begin(), in.end(), face_x_.begin() + std::ptrdiff_t(nodes_of_.size() * face_values));
 }
 
@@ -262,6 +250,7 @@ void ShellContact::find_contacts() {
   const double* x = face_x_.data();
   const int* offset = candidate_offset_.data();
   const int* candidates = candidates_.data();
+  double* gaps = candidate_gap_.data();  // each node writes its own candidates' entries
   NodeContact* out = contact_.data();
   const double* mass = model_.mass.data();
   const LocalId* element = nodes_of_.data();
@@ -273,24 +262,22 @@ void ShellContact::find_contacts() {
     double nearest = std::numeric_limits<double>::infinity();
     for (int n = offset[k]; n < offset[k + 1]; ++n) {
       const int j = candidates[n];
-      const FacePoint fp = nearest_point_of_face(p, x + std::size_t(j) * face_values);
-      nearest = std::min(nearest, fp.distance - (own.half_thickness + faces[j].half_thickness));
+      gaps[n] = nearest_point_of_face(p, x + std::size_t(j) * face_values).distance -
+                (own.half_thickness + faces[j].half_thickness);
+      nearest = std::min(nearest, gaps[n]);
     }
     out[k] = NodeContact{};
     if (!(nearest < 0)) return;
     NodeContact best;
-    FacePoint best_point;
     double best_centre = std::numeric_limits<double>::infinity();
     for (int n = offset[k]; n < offset[k + 1]; ++n) {
+      if (gaps[n] > nearest + tie) continue;
       const int j = candidates[n];
-      const double* fx = x + std::size_t(j) * face_values;
-      const FacePoint fp = nearest_point_of_face(p, fx);
-      const double gap = fp.distance - (own.half_thickness + faces[j].half_thickness);
-      if (gap > nearest + tie) continue;
-      const double centre = centroid_distance2(x + e * face_values, fx);
-      if (centre < best_centre) best_centre = centre, best.face = j, best.gap = gap, best_point = fp;
+      const double centre = centroid_distance2(x + e * face_values, x + std::size_t(j) * face_values);
+      if (centre < best_centre) best_centre = centre, best.face = j, best.gap = gaps[n];
     }
     if (!(best.gap < 0)) return;  // the face chosen in the tie band is not touched: no force (never a pull)
+    const FacePoint best_point = nearest_point_of_face(p, x + std::size_t(best.face) * face_values);
     best.sub = best_point.sub;
     for (int i = 0; i < 3; ++i) best.w[i] = best_point.w[i];
     if (best_point.distance > 0) {
@@ -337,7 +324,7 @@ void ShellContact::apply_forces(PositionRows& fext) {
                            -c.w[j] * f * c.normal[0], -c.w[j] * f * c.normal[1], -c.w[j] * f * c.normal[2],
                            c.w[j] * c.stiffness});
   }
-  const std::vector<double> received = all_to_all(send, dm.comm());
+  const std::vector<double> received = parallel::all_to_all(send, dm.comm());
   reactions_.insert(reactions_.end(), received.begin(), received.end());
   const std::size_t n = reactions_.size() / reaction_values;
   order_.resize(n);
@@ -363,7 +350,7 @@ void ShellContact::apply_forces(PositionRows& fext) {
 void ShellContact::check_stability() const {
   double worst = 0;
   for (double b : bound_) worst = std::max(worst, b);
-  MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_DOUBLE, MPI_MAX, model_.dm.comm());
+  worst = parallel::max(worst, model_.dm.comm());
   if (worst < step_room_) return;
   GlobalId where = std::numeric_limits<GlobalId>::max();
   for (std::size_t k = 0; k < bound_.size(); ++k)

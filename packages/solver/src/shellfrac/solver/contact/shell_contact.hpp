@@ -40,8 +40,6 @@ class ShellContact {
   /// contact), and their values after the last add_forces (collective).
   std::vector<std::string> history_columns() const;
   std::vector<double> history_values() const;
-  /// How many times the candidate lists were built (for tests and the log).
-  long searches() const { return searches_; }
 
  private:
   /// A face: an element of a block in contact, owned here or a contact ghost.
@@ -85,6 +83,7 @@ class ShellContact {
   std::vector<double> face_X_;          ///< the faces' reference positions, 18 per face
   std::vector<double> x_search_;        ///< the nodes' positions at the last search (18 per nodes_of_ entry)
   std::vector<int> candidate_offset_{0}, candidates_;  ///< per node: face indices, ascending face gid
+  std::vector<double> candidate_gap_;                  ///< the step's gap to each candidate (find_contacts)
   std::vector<std::vector<LocalId>> send_;  ///< per rank: owned faces (indices into faces_) sent as its ghosts
   std::vector<int> receive_count_;          ///< per rank: the ghosts it sends
   std::vector<NodeContact> contact_;        ///< per node
@@ -92,7 +91,6 @@ class ShellContact {
   std::vector<double> reactions_;           ///< the step's reaction records on this rank's faces
   std::vector<std::size_t> order_;          ///< their summation order
   bool searched_ = false;
-  long searches_ = 0;
 };
 
 }  // namespace shellfrac::solver
