@@ -104,6 +104,121 @@ TEST(RigidWall, UnstablePenaltyAndZeroNormalRefused) {
   EXPECT_NE(zero.find("'shellfrac->Contact->Rigid Walls->floor->Normal' is zero"), std::string::npos) << zero;
 }
 
+// Coulomb friction at a wall (theory.md §12.6; contact/coulomb_friction.hpp): test (c) of the contact issue. The
+// plate above rests on the fixed wall z = delta - h/2 under gravity g, where delta = g_n dt^2 / s is the penetration
+// at which the penalty force k m delta = m g_n carries every node's weight from the start (g_n: gravity's part along
+// the normal), so the plate neither bounces nor deforms and every node slides alike: it moves as a rigid block
+// whose tangential velocity u follows the explicit Coulomb recurrence of eqs. 12.6a-b (each step: the half-step
+// velocity u_h = u + dt/2 a; the trial slip w = u_h + dt g_t; stick, a = -w/dt + g_t, when |w|/dt <= mu_s g_n;
+// slide, a = g_t - mu_d g_n sign(w), otherwise; u = u_h + dt/2 a). References: that recurrence (1e-9, as above);
+// and its continuous limits:
+//  * a block launched at V on a level wall slides at the constant deceleration mu_d g (a block on a table: any
+//    text on Coulomb friction) and stops after V / (mu_d g) having slid V^2 / (2 mu_d g) (within a step's V dt);
+//    then it stays stopped: static friction holds it (to round-off: the trial slip is zero); the energy friction took is
+//    its kinetic energy (1e-3; the dissipation's midpoint sum over a decelerating slide is exact but for the last
+//    step);
+//  * on a wall tilted by theta (gravity turned instead): below the static angle, tan theta < mu_s, a block at rest
+//    stays at rest (to round-off; the static force is exactly m g sin theta); above it, it slides at
+//    g (sin theta - mu_d cos theta) — with mu_d < tan theta < mu_s the two coefficients are told apart.
+namespace {
+
+Teuchos::RCP<Teuchos::ParameterList> block_on_wall(double dt, double theta, double g, double mu_d, double mu_s,
+                                                   double velocity) {
+  const double s = 0.25, gn = g * std::cos(theta), gt = g * std::sin(theta);
+  auto deck = falling_plate(s, gn * dt * dt / s - 0.5 * h);
+  deck->sublist("Initial Conditions").sublist("fall").set("Velocity", vec3(velocity, 0, 0));
+  auto& gravity = deck->sublist("Loads").sublist("gravity");
+  gravity.set("Type", std::string("Gravity")), gravity.set("Acceleration", vec3(gt, 0, -gn));
+  deck->sublist("Contact").set("Friction Coefficient", mu_d);
+  deck->sublist("Contact").set("Static Friction Coefficient", mu_s);
+  return deck;
+}
+
+/// The explicit Coulomb recurrence of the file comment for the block's tangential motion.
+struct Block {
+  double x = 0, u = 0, a = 0;
+  void step(double dt, double gn, double gt, double mu_d, double mu_s) {
+    x += dt * u + 0.5 * dt * dt * a;
+    const double uh = u + 0.5 * dt * a, w = uh + dt * gt;
+    a = std::abs(w) / dt <= mu_s * gn ? gt - w / dt : gt - mu_d * gn * (w > 0 ? 1 : -1);
+    u = uh + 0.5 * dt * a;
+  }
+};
+
+/// The plate's mean x-displacement and x-velocity over all its DG nodes.
+std::pair<double, double> block_motion(const solver::RunModel& model) {
+  const auto p = model.dynamics->probes({std::vector<char>(std::size_t(model.counts.nodes), 1)});
+  return {p.at(0), p.at(3)};
+}
+
+}  // namespace
+
+TEST(RigidWallFriction, BlockSlidesAtMuGAndStops) {
+  const double dt = build_model(falling_plate(0.25, -1e3)).dynamics->time_step();
+  const double V = 1.0, mu_d = 0.3, mu_s = 0.5, g = V / (mu_d * 200 * dt);  // it stops after 200 steps
+  auto model = build_model(block_on_wall(dt, 0.0, g, mu_d, mu_s, V));
+  auto& dyn = *model.dynamics;
+  ASSERT_EQ(dyn.contact_columns().back(), "friction_dissipation");
+  const double e0 = dyn.record().kinetic;
+  Block b;
+  b.u = V, b.a = -mu_d * g;  // the start: sliding
+  for (int step = 1; step <= 260; ++step) {
+    b.step(dt, g, 0.0, mu_d, mu_s);
+    dyn.step();
+    const auto [x, u] = block_motion(model);
+    EXPECT_NEAR(u, b.u, 1e-9 * V) << "step " << step;
+    EXPECT_NEAR(x, b.x, 1e-9 * V * dt * step) << "step " << step;
+    const double t = step * dt;
+    if (t < V / (mu_d * g) - dt) EXPECT_NEAR(u, V - mu_d * g * t, 0.5 * mu_d * g * dt) << "step " << step;
+    if (t > V / (mu_d * g) + dt) EXPECT_LT(std::abs(u), 1e-15 * V) << "step " << step;  // stuck (to round-off)
+  }
+  const auto [x, u] = block_motion(model);
+  EXPECT_NEAR(x, V * V / (2 * mu_d * g), V * dt);
+  const double dissipated = dyn.contact_values().back();
+  EXPECT_NEAR(dissipated, e0, 1e-3 * e0);
+  // Friction's work is external work (trapezoidal): the balance is closed but for the trapezoidal rule's
+  // (M dt^2 / 8) (a_end^2 - a_0^2) of the wall test, a_0 = mu_d g, a_end = 0.
+  const double trapezoid = mass * dt * dt / 8 * (mu_d * g) * (mu_d * g);
+  EXPECT_NEAR(std::abs(solver::energy_balance_error(dyn.record(), e0)), trapezoid, 1e-3 * trapezoid);
+  EXPECT_LT(dyn.record().strain, 1e-12 * e0);
+}
+
+TEST(RigidWallFriction, StaticAndDynamicCoefficientsOnAnIncline) {
+  const double dt = build_model(falling_plate(0.25, -1e3)).dynamics->time_step();
+  const double mu_d = 0.3, mu_s = 0.5, g = 1e-6 / (dt * dt);  // it slides about 0.13 in 1000 steps
+  for (const double tan_theta : {0.4, 0.45}) {  // between mu_d and mu_s: sticks
+    const double theta = std::atan(tan_theta);
+    auto model = build_model(block_on_wall(dt, theta, g, mu_d, mu_s, 0.0));
+    for (int step = 0; step < 1000; ++step) model.dynamics->step();
+    const auto [x, u] = block_motion(model);
+    EXPECT_LT(std::abs(u), 1e-12 * g * dt) << "tan theta " << tan_theta;  // at rest: held by static friction
+    EXPECT_LT(std::abs(x), 1e-12 * g * dt * dt) << "tan theta " << tan_theta;
+  }
+  const double theta = std::atan(0.6);  // above mu_s: slides at g (sin - mu_d cos)
+  auto model = build_model(block_on_wall(dt, theta, g, mu_d, mu_s, 0.0));
+  Block b;
+  b.a = g * (std::sin(theta) - mu_d * std::cos(theta));  // the start: the trial slip dt g_t is beyond the cone
+  for (int step = 1; step <= 1000; ++step) {
+    b.step(dt, g * std::cos(theta), g * std::sin(theta), mu_d, mu_s);
+    model.dynamics->step();
+    const auto [x, u] = block_motion(model);
+    EXPECT_NEAR(u, b.u, 1e-9 * g * dt * step) << "step " << step;
+  }
+  const double t = 1000 * dt, slope = g * (std::sin(theta) - mu_d * std::cos(theta));
+  EXPECT_NEAR(block_motion(model).second, slope * t, 2 * g * dt);
+}
+
+TEST(RigidWallFriction, StaticBelowDynamicRefused) {
+  auto deck = falling_plate(0.25, -1.0);
+  deck->sublist("Contact").set("Friction Coefficient", 0.4);
+  deck->sublist("Contact").set("Static Friction Coefficient", 0.2);
+  const std::string e = input_error(deck, "wall.xml");
+  EXPECT_NE(e.find("wall.xml: 'shellfrac->Contact->Static Friction Coefficient' = 0.2 is below the 'Friction "
+                   "Coefficient' 0.4"),
+            std::string::npos)
+      << e;
+}
+
 // Rigid bodies (theory.md §12.4; contact/rigid_body_shape.hpp, contact/rigid_bodies.hpp).
 //
 // The shapes' signed distances, against values worked out by hand: a sphere of radius 2 about (1, 2, 3); a

@@ -6,6 +6,7 @@
 #include "shellfrac/core/exact_sum.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/solver/contact/contact_penalty.hpp"
+#include "shellfrac/solver/contact/coulomb_friction.hpp"
 #include "shellfrac/solver/contact/rigid_body_shape.hpp"
 #include "shellfrac/solver/model/shell_model.hpp"
 
@@ -16,7 +17,9 @@ RigidBodies::RigidBodies(const ContactParams& params, const ShellModel& model, d
       bodies_(params.bodies),
       penalty_scale_(params.penalty_scale),
       stiffness_per_mass_(params.penalty_scale / (dt * dt)),
-      step_ratio_squared_(4 * (dt / model.stable_dt) * (dt / model.stable_dt)) {
+      step_ratio_squared_(4 * (dt / model.stable_dt) * (dt / model.stable_dt)),
+      friction_(params.friction),
+      dt_(dt) {
   if (!bodies_.empty()) check_contact_penalty(penalty_scale_, dt, model.stable_dt, file);
 }
 
@@ -40,8 +43,11 @@ void RigidBodies::predict(ShellState& s, double dt, double t1) const {
   }
 }
 
-void RigidBodies::add_forces(const ShellState& shells, std::vector<RigidBodyState>& bodies, PositionRows& fext) const {
+void RigidBodies::add_forces(double step, ShellState& s) const {
   if (bodies_.empty()) return;
+  const ShellState& shells = s;
+  std::vector<RigidBodyState>& bodies = s.bodies;
+  PositionRows& fext = s.external_force;
   // Per body: the force on the shells (3) and the mass of the nodes in contact (1), summed exactly.
   std::vector<ExactSum> sums(4 * bodies_.size());
   for (std::size_t k = 0; k < bodies_.size(); ++k) {
@@ -62,7 +68,17 @@ void RigidBodies::add_forces(const ShellState& shells, std::vector<RigidBodyStat
         if (gap >= 0) continue;
         const double m = *model_.mass.at(le, A), f = -stiffness_per_mass_ * m * gap;
         double* fe = fext.at(le, A);
-        for (int c = 0; c < 3; ++c) fe[c] += f * d.normal[c], sums[4 * k + std::size_t(c)].add(f * d.normal[c]);
+        double force[3] = {f * d.normal[0], f * d.normal[1], f * d.normal[2]};
+        if (friction_.enabled()) {  // the trial slip relative to the body (eq. 12.6a), as at a wall
+          const double *v = s.v.at(le, A), *fi = s.internal_force.at(le, A);
+          double slip[3], trial[3], ff[3];
+          for (int c = 0; c < 3; ++c)
+            slip[c] = v[c] - bodies[k].v[c], trial[c] = slip[c] + dt_ * (fe[c] + force[c] - fi[c]) / m;
+          coulomb_friction(friction_, d.normal.data(), trial, f, m, dt_, ff);
+          for (int c = 0; c < 3; ++c) force[c] += ff[c];
+          *s.friction_dissipation.at(le) += friction_dissipation(ff, slip, step);
+        }
+        for (int c = 0; c < 3; ++c) fe[c] += force[c], sums[4 * k + std::size_t(c)].add(force[c]);
         sums[4 * k + 3].add(m);
       }
     }

@@ -3,13 +3,18 @@
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/exact_sum.hpp"
 #include "shellfrac/solver/contact/contact_penalty.hpp"
+#include "shellfrac/solver/contact/coulomb_friction.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/solver/model/shell_model.hpp"
 
 namespace shellfrac::solver {
 
 RigidWalls::RigidWalls(const ContactParams& params, const ShellModel& model, double dt, const std::string& file)
-    : model_(model), walls_(params.walls), stiffness_per_mass_(params.penalty_scale / (dt * dt)) {
+    : model_(model),
+      walls_(params.walls),
+      stiffness_per_mass_(params.penalty_scale / (dt * dt)),
+      friction_(params.friction),
+      dt_(dt) {
   if (!walls_.empty()) check_contact_penalty(params.penalty_scale, dt, model.stable_dt, file);
 }
 
@@ -21,7 +26,8 @@ double RigidWalls::node_force(const RigidWall& w, double t, const ShellState& s,
   return gap < 0 ? -stiffness_per_mass_ * *model_.mass.at(le, A) * gap : 0.0;
 }
 
-void RigidWalls::add_forces(double t, const ShellState& s, PositionRows& fext) const {
+void RigidWalls::add_forces(double t, double step, ShellState& s) const {
+  PositionRows& fext = s.external_force;
   for (const RigidWall& w : walls_)
     for (LocalId le = 0; le < model_.owned; ++le)
       for (int A = 0; A < position_nodes; ++A) {
@@ -29,6 +35,15 @@ void RigidWalls::add_forces(double t, const ShellState& s, PositionRows& fext) c
         if (f == 0) continue;
         double* fe = fext.at(le, A);
         for (int c = 0; c < 3; ++c) fe[c] += f * w.normal[c];
+        if (!friction_.enabled()) continue;
+        // The trial slip (eq. 12.6a): the velocity relative to the wall at the next half step without friction.
+        const double m = *model_.mass.at(le, A);
+        const double *v = s.v.at(le, A), *fi = s.internal_force.at(le, A);
+        double slip[3], trial[3], ff[3];
+        for (int c = 0; c < 3; ++c) slip[c] = v[c] - w.velocity[c], trial[c] = slip[c] + dt_ * (fe[c] - fi[c]) / m;
+        coulomb_friction(friction_, w.normal.data(), trial, f, m, dt_, ff);
+        for (int c = 0; c < 3; ++c) fe[c] += ff[c];
+        *s.friction_dissipation.at(le) += friction_dissipation(ff, slip, step);
       }
 }
 

@@ -12,6 +12,7 @@
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/solver/contact/closest_point.hpp"
 #include "shellfrac/solver/contact/contact_penalty.hpp"
+#include "shellfrac/solver/contact/coulomb_friction.hpp"
 #include "shellfrac/solver/model/kernel_views.hpp"
 #include "shellfrac/solver/model/shell_model.hpp"
 
@@ -84,6 +85,7 @@ ShellContact::ShellContact(const ContactParams& params, const ShellModel& model,
   if (!enabled_) return;
   check_contact_penalty(p.penalty_scale, dt, model.stable_dt, file, "Contact->Shells->Penalty Scale");
   penalty_per_dt2_ = p.penalty_scale / (dt * dt);
+  friction_ = p.friction, dt_ = dt;
   const double sf = dt / model.stable_dt;
   step_room_ = (4 - 4 * sf * sf) / (dt * dt);
   for (std::size_t b = 0; b < in_contact_.size(); ++b)
@@ -96,21 +98,25 @@ ShellContact::ShellContact(const ContactParams& params, const ShellModel& model,
   bound_.resize(nodes_of_.size() * position_nodes);
 }
 
-void ShellContact::add_forces(const ShellState& s, PositionRows& fext) {
+void ShellContact::add_forces(double step, ShellState& s) {
   if (!enabled_) return;
-  pack_owned_positions(s);
+  pack_owned_motion(s);
   if (!searched_ || moved_beyond_margin())
     search();
   else
     exchange_ghost_positions();
-  find_contacts();
-  apply_forces(fext);
+  find_contacts(step);
+  apply_forces(s);
 }
 
-void ShellContact::pack_owned_positions(const ShellState& s) {
+void ShellContact::pack_owned_motion(const ShellState& s) {
   face_x_.resize(std::max(face_x_.size(), nodes_of_.size() * face_values));
   for (std::size_t i = 0; i < nodes_of_.size(); ++i)
     std::copy(s.x.at(nodes_of_[i], 0), s.x.at(nodes_of_[i], 0) + face_values, face_x_.begin() + i * face_values);
+  if (!friction_.enabled()) return;
+  face_v_.resize(std::max(face_v_.size(), nodes_of_.size() * face_values));
+  for (std::size_t i = 0; i < nodes_of_.size(); ++i)
+    std::copy(s.v.at(nodes_of_[i], 0), s.v.at(nodes_of_[i], 0) + face_values, face_v_.begin() + i * face_values);
 }
 
 bool ShellContact::moved_beyond_margin() const {
@@ -187,6 +193,7 @@ void ShellContact::search() {
     face_X_.insert(face_X_.end(), ghosts.begin() + std::ptrdiff_t(k + 7), ghosts.begin() + std::ptrdiff_t(k + 7 + face_values));
   }
   face_x_.resize(faces_.size() * face_values);
+  if (friction_.enabled()) face_v_.resize(faces_.size() * face_values);
   exchange_ghost_positions();
   for (std::size_t i = owned_faces; i < faces_.size(); ++i)
     face_boxes.push_back(Box::around(&face_x_[i * face_values], position_nodes).inflated(faces_[i].half_thickness));
@@ -228,24 +235,35 @@ void ShellContact::search() {
   searched_ = true;
 }
 
+// The ghosts' positions (and, with friction, velocities), in the order of send_.
 void ShellContact::exchange_ghost_positions() {
   const int P = model_.dm.num_ranks();
+  const bool velocities = friction_.enabled();
   std::vector<std::vector<double>> send(static_cast<std::size_t>(P));
   for (int q = 0; q < P; ++q)
-    for (LocalId i : send_[std::size_t(q)])
-      send[std::size_t(q)].insert(send[std::size_t(q)].end(), face_x_.begin() + std::ptrdiff_t(i) * face_values,
-                                  face_x_.begin() + std::ptrdiff_t(i + 1) * face_values);
+    for (LocalId i : send_[std::size_t(q)]) {
+      std::vector<double>& out = send[std::size_t(q)];
+      out.insert(out.end(), face_x_.begin() + std::ptrdiff_t(i) * face_values,
+                 face_x_.begin() + std::ptrdiff_t(i + 1) * face_values);
+      if (velocities)
+        out.insert(out.end(), face_v_.begin() + std::ptrdiff_t(i) * face_values,
+                   face_v_.begin() + std::ptrdiff_t(i + 1) * face_values);
+    }
   const std::vector<double> in = parallel::all_to_all(send, model_.dm.comm());
-  std::copy(in.begin(), in.end(), face_x_.begin() + std::ptrdiff_t(nodes_of_.size() * face_values));
+  const std::size_t record = velocities ? 2 * face_values : face_values, first = nodes_of_.size() * face_values;
+  for (std::size_t g = 0; g * record < in.size(); ++g) {
+    const auto from = in.begin() + std::ptrdiff_t(g * record);
+    std::copy(from, from + face_values, face_x_.begin() + std::ptrdiff_t(first + g * face_values));
+    if (velocities) std::copy(from + face_values, from + 2 * face_values, face_v_.begin() + std::ptrdiff_t(first + g * face_values));
+  }
 }
-
 
 // Per node (a Kokkos kernel: each iteration writes its own node's result only). The face is the nearest one, except
 // that among the faces within `tie` of the nearest gap the one whose centre is nearest to the node's own element's
 // wins (theory.md §12.5): where the node meets a vertex or an edge of the other surface, every DG copy of that vertex
 // is equally near, and the rule gives each element's nodes the element opposite, instead of piling every node on the
 // copy of the lowest id. A function of the set of faces within reach, so of neither the search's timing nor the ranks.
-void ShellContact::find_contacts() {
+void ShellContact::find_contacts(const double step) {
   const Face* faces = faces_.data();
   const double* x = face_x_.data();
   const int* offset = candidate_offset_.data();
@@ -254,7 +272,9 @@ void ShellContact::find_contacts() {
   NodeContact* out = contact_.data();
   const double* mass = model_.mass.data();
   const LocalId* element = nodes_of_.data();
-  const double penalty = penalty_per_dt2_, tie = tie_;
+  const double penalty = penalty_per_dt2_, tie = tie_, dt = dt_;
+  const FrictionParams friction = friction_;
+  const double* v = face_v_.data();
   Kokkos::parallel_for("shellfrac::ShellContact", KernelRange(0, contact_.size()), [=](const std::size_t k) {
     const std::size_t e = k / position_nodes;
     const Face& own = faces[e];
@@ -295,14 +315,31 @@ void ShellContact::find_contacts() {
     // of an element, half the wall's between equal elements, and a heavy element's nodes do not press a light one's
     // harder than it can take (theory.md §12.5).
     const double mA = mass[std::size_t(element[e]) * position_nodes + k % position_nodes];
-    best.stiffness = penalty * mA * faces[best.face].mean_mass / (own.mean_mass + faces[best.face].mean_mass);
+    const double mF = faces[best.face].mean_mass;
+    best.stiffness = penalty * mA * mF / (own.mean_mass + mF);
+    if (friction.enabled()) {
+      // The slip of the node against the face's nearest point, whose velocity is the face nodes' weighted as the
+      // reaction; the pair's effective mass 1 / (1/m_A + sum w_j^2 / mbar_F) stops it in one step (eq. 12.6b).
+      const double* fv = v + std::size_t(best.face) * face_values;
+      double slip[3], w2 = 0;
+      for (int i = 0; i < 3; ++i) slip[i] = v[3 * k + i];
+      for (int j = 0; j < 3; ++j) {
+        const double* vj = fv + 3 * sub_triangles[best.sub][j];
+        for (int i = 0; i < 3; ++i) slip[i] -= best.w[j] * vj[i];
+        w2 += best.w[j] * best.w[j];
+      }
+      const double m_eff = 1 / (1 / mA + w2 / mF);
+      coulomb_friction(friction, best.normal, slip, -best.stiffness * best.gap, m_eff, dt, best.friction);
+      best.dissipation = friction_dissipation(best.friction, slip, step);
+    }
     out[k] = best;
   });
 }
 
 // The forces: each node's own first, then the reactions on each face node in the order of (face gid, node gid, face
 // node), whichever rank computed them. The stability bound per node is Gershgorin's on M^-1 K (theory.md §12.5).
-void ShellContact::apply_forces(PositionRows& fext) {
+void ShellContact::apply_forces(ShellState& s) {
+  PositionRows& fext = s.external_force;
   const auto& dm = model_.dm;
   const int P = dm.num_ranks();
   std::vector<std::vector<double>> send(static_cast<std::size_t>(P));
@@ -314,14 +351,17 @@ void ShellContact::apply_forces(PositionRows& fext) {
     const LocalId le = nodes_of_[k / position_nodes];
     const int A = int(k % position_nodes);
     const double f = -c.stiffness * c.gap;
+    const double force[3] = {f * c.normal[0] + c.friction[0], f * c.normal[1] + c.friction[1],
+                             f * c.normal[2] + c.friction[2]};
     double* fe = fext.at(le, A);
-    for (int i = 0; i < 3; ++i) fe[i] += f * c.normal[i];
+    for (int i = 0; i < 3; ++i) fe[i] += force[i];
+    *s.friction_dissipation.at(le) += c.dissipation;
     bound_[k] += 2 * c.stiffness / *model_.mass.at(le, A);
     const Face& face = faces_[std::size_t(c.face)];
     std::vector<double>& to = face.local >= 0 ? reactions_ : send[std::size_t(face.owner)];
     for (int j = 0; j < 3; ++j)
       to.insert(to.end(), {double(face.gid), double(dm.dg_node_gid(le, A)), double(sub_triangles[c.sub][j]),
-                           -c.w[j] * f * c.normal[0], -c.w[j] * f * c.normal[1], -c.w[j] * f * c.normal[2],
+                           -c.w[j] * force[0], -c.w[j] * force[1], -c.w[j] * force[2],
                            c.w[j] * c.stiffness});
   }
   const std::vector<double> received = parallel::all_to_all(send, dm.comm());

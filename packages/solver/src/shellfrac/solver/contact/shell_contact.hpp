@@ -14,6 +14,10 @@
 /// nodes are a contact ghost layer, their positions exchanged every step; the reactions on another rank's faces are
 /// sent to it, and every face node sums its reactions in the order of the nodes' global ids. The forces join the
 /// external forces: rank- and thread-independent, bitwise, like the rest of the step.
+///
+/// Friction (§12.6): a node in contact also gets the Coulomb force of its slip velocity relative to the face's
+/// nearest point (the face nodes' velocities weighted as the reaction), for the pair's effective mass; the face
+/// takes the reaction with the same weights.
 #include <string>
 #include <vector>
 
@@ -33,9 +37,11 @@ class ShellContact {
   ShellContact(const ContactParams& params, const ShellModel& model, double dt,
                const std::vector<std::string>& block_names, const std::string& file);
   bool enabled() const { return enabled_; }
-  /// Adds the contact forces of state s to f_ext (owned rows). NumericalError if the contacts pile up on a node
-  /// so that the step is no longer stable (theory.md §12.5). Collective.
-  void add_forces(const ShellState& s, PositionRows& fext);
+  /// Adds the contact forces of state s to s.external_force (owned rows) and books the friction's dissipation over
+  /// the step of length `step` that ends now.
+  /// NumericalError if the contacts pile up on a node so that the step is no longer stable (theory.md §12.5).
+  /// Collective.
+  void add_forces(double step, ShellState& s);
   /// History columns: shell_contact_energy (the penalty energy stored now), shell_contact_nodes (the nodes in
   /// contact), and their values after the last add_forces (collective).
   std::vector<std::string> history_columns() const;
@@ -59,14 +65,16 @@ class ShellContact {
     double normal[3] = {0, 0, 0};
     double gap = 0;
     double stiffness = 0;
+    double friction[3] = {0, 0, 0};  ///< the Coulomb force on the node (theory.md §12.6)
+    double dissipation = 0;          ///< what it takes over the step
   };
 
-  void pack_owned_positions(const ShellState& s);
+  void pack_owned_motion(const ShellState& s);
   bool moved_beyond_margin() const;
   void search();
   void exchange_ghost_positions();
-  void find_contacts();
-  void apply_forces(PositionRows& fext);
+  void find_contacts(double step);
+  void apply_forces(ShellState& s);
   void check_stability() const;
 
   const ShellModel& model_;
@@ -77,10 +85,13 @@ class ShellContact {
   double margin_ = 0;
   double tie_ = 0;                      ///< gaps this close count as equally near (theory.md §12.5)
   double max_half_thickness_ = 0;       ///< over every block in contact
+  FrictionParams friction_;
+  double dt_ = 0;
   std::vector<LocalId> nodes_of_;       ///< owned elements in contact (their 6 nodes are the nodes)
   std::vector<Face> faces_;             ///< owned ones first (in nodes_of_ order), then the contact ghosts
   std::vector<double> face_x_;          ///< 18 per face
   std::vector<double> face_X_;          ///< the faces' reference positions, 18 per face
+  std::vector<double> face_v_;          ///< with friction: the faces' velocities, 18 per face
   std::vector<double> x_search_;        ///< the nodes' positions at the last search (18 per nodes_of_ entry)
   std::vector<int> candidate_offset_{0}, candidates_;  ///< per node: face indices, ascending face gid
   std::vector<double> candidate_gap_;                  ///< the step's gap to each candidate (find_contacts)

@@ -25,7 +25,7 @@ void size_state(const ShellModel& model, ShellState& s) {
   s.director_force.assign(no), s.rotation.assign(no), s.director_rate.assign(no), s.director_acceleration.assign(no);
   s.external_director_force.assign(no);
   for (auto* rows : {&s.strain_energy, &s.external_work, &s.reaction_work, &s.damping_dissipation, &s.plastic_work,
-                     &s.element_activation_loss})
+                     &s.element_activation_loss, &s.friction_dissipation})
     rows->assign(no);
   s.plastic.assign(model.any_plastic ? no * disc::num_area_points : 0, materials::PlasticState{});
   s.mode.assign(ni, intact), s.delta_max.assign(ni), s.conormal.assign(ni), s.activation_offset.assign(ni);

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "shellfrac/core/error.hpp"
+#include "shellfrac/core/exact_sum.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/materials/elastic_resultant.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
@@ -85,7 +86,9 @@ struct ShellDynamics::Impl {
         shells(deck.contact, model, dt, block_names(mesh), deck.file),
         assembly(model, fracture.enabled(), times),
         integrator(model, constraints, loads, walls, bodies, shells, assembly, fracture, times, deck.time.mass_damping,
-                   relaxation_settings(deck)) {
+                   relaxation_settings(deck)),
+        friction((deck.contact.friction.enabled() && (!walls.empty() || !bodies.empty())) ||
+                 (shells.enabled() && deck.contact.shells.friction.enabled())) {
     set_initial_state(deck.initial_velocities, sets, model, constraints, state);
     bodies.initial_state(state);
     integrator.start(state);
@@ -103,6 +106,7 @@ struct ShellDynamics::Impl {
   ShellContact shells;
   ForceAssembly assembly;
   CentralDifference integrator;
+  bool friction;  ///< whether any contact has friction (the history's friction_dissipation column)
   ShellState state;
 };
 
@@ -149,6 +153,7 @@ std::vector<std::string> ShellDynamics::contact_columns() const {
   for (const auto& w : impl_->walls.names()) out.push_back(w + "_wall_force");
   for (auto& c : impl_->bodies.history_columns()) out.push_back(std::move(c));
   for (auto& c : impl_->shells.history_columns()) out.push_back(std::move(c));
+  if (impl_->friction) out.push_back("friction_dissipation");
   return out;
 }
 
@@ -156,7 +161,15 @@ std::vector<double> ShellDynamics::contact_values() const {
   std::vector<double> out = wall_forces();
   for (double v : impl_->bodies.history_values(impl_->state)) out.push_back(v);
   for (double v : impl_->shells.history_values()) out.push_back(v);
+  if (impl_->friction) out.push_back(friction_dissipation());
   return out;
+}
+
+double ShellDynamics::friction_dissipation() const {
+  ExactSum sum;
+  for (LocalId le = 0; le < impl_->model.owned; ++le) sum.add(*impl_->state.friction_dissipation.at(le));
+  sum.allreduce(impl_->model.dm.comm());
+  return sum.value();
 }
 
 double ShellDynamics::bytes_per_element() const {

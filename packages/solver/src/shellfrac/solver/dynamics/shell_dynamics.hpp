@@ -67,9 +67,13 @@ class ShellDynamics {
   /// Collective.
   std::vector<double> wall_forces() const;
   /// The history columns of the contact partners: <wall>_wall_force per wall, then per rigid body its position,
-  /// velocity, contact force and kinetic energy (contact/rigid_bodies.hpp); and their values now (collective).
+  /// velocity, contact force and kinetic energy (contact/rigid_bodies.hpp), the shell contact's columns, and
+  /// friction_dissipation when a contact has friction; and their values now (collective).
   std::vector<std::string> contact_columns() const;
   std::vector<double> contact_values() const;
+  /// The energy friction has taken from the shells so far (theory.md §12.6; part of the external work, as every
+  /// contact force is an external force). Collective.
+  double friction_dissipation() const;
   /// Accumulated phase timings on this rank.
   const PhaseTimes& phase_times() const;
   /// Bytes of state, reference data and force buffers held on this rank, divided by the owned elements.

@@ -38,13 +38,34 @@ std::vector<T> named_entries(Teuchos::ParameterList& list, const char* what, con
 
 }  // namespace
 
+void FrictionParams::add_valid_parameters(Teuchos::ParameterList& pl) {
+  pl.set("Friction Coefficient", 0.0,
+         "Coulomb coefficient mu_d of sliding contacts (theory.md §12.6); 0: frictionless", params::non_negative_double());
+  pl.set("Static Friction Coefficient", -1.0,
+         "Coulomb coefficient mu_s >= mu_d up to which a contact sticks (theory.md §12.6); -1: the Friction "
+         "Coefficient");
+}
+
+FrictionParams FrictionParams::from_parameters(const Teuchos::ParameterList& pl, const params::Context& ctx) {
+  FrictionParams f;
+  f.dynamic_coefficient = pl.get<double>("Friction Coefficient");
+  const double mu_s = pl.get<double>("Static Friction Coefficient");
+  f.static_coefficient = mu_s == -1 ? f.dynamic_coefficient : mu_s;
+  SHELLFRAC_INPUT_REQUIRE(std::isfinite(f.static_coefficient) && f.static_coefficient >= f.dynamic_coefficient,
+                          ctx.file << ": '" << ctx.path << "->Static Friction Coefficient' = " << mu_s
+                                   << " is below the 'Friction Coefficient' " << f.dynamic_coefficient
+                                   << " (static friction is at least the sliding one; -1: the same)");
+  return f;
+}
+
 Teuchos::RCP<const Teuchos::ParameterList> RigidWall::valid_parameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("<wall name>"));
   pl->set("Point", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0, 0.0)), "A point of the plane {x, y, z} at t = 0");
   pl->set("Normal", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0, 1.0)),
           "Normal of the plane, pointing to the side the shells are on {nx, ny, nz} (normalized)");
   pl->set("Velocity", Teuchos::Array<double>(Teuchos::tuple<double>(0.0, 0.0, 0.0)),
-          "Velocity of the plane {vx, vy, vz} [length/time] (constant; its tangential part does nothing)");
+          "Velocity of the plane {vx, vy, vz} [length/time] (constant; its tangential part drags the shells only "
+          "with friction)");
   return pl;
 }
 
@@ -122,6 +143,7 @@ Teuchos::RCP<const Teuchos::ParameterList> ShellContactParams::valid_parameters(
           "Margin of the contact candidate lists [length]; they are rebuilt when a node has moved half of it. "
           "0: the largest thickness of the blocks in contact",
           params::non_negative_double());
+  FrictionParams::add_valid_parameters(*pl);
   return pl;
 }
 
@@ -131,6 +153,7 @@ ShellContactParams ShellContactParams::from_parameters(Teuchos::ParameterList& p
   for (const auto& b : pl.get<Teuchos::Array<std::string>>("Blocks")) c.blocks.push_back(b);
   c.penalty_scale = pl.get<double>("Penalty Scale");
   c.search_margin = pl.get<double>("Search Margin");
+  c.friction = FrictionParams::from_parameters(pl, ctx);
   return c;
 }
 
@@ -140,6 +163,7 @@ Teuchos::RCP<const Teuchos::ParameterList> ContactParams::valid_parameters() {
           "The contact stiffness of a DG node of mass m is Penalty Scale m / dt^2 (theory.md §12.2); at most "
           "4 (1 - S_f^2) with S_f = dt / the stable step, so that contact does not make the step unstable",
           params::positive_double());
+  FrictionParams::add_valid_parameters(*pl);
   pl->sublist("Rigid Walls", false, "One sublist per planar rigid wall, named freely");
   pl->sublist("Rigid Bodies", false, "One sublist per rigid body (sphere or projectile), named freely");
   pl->set("Shells", *ShellContactParams::valid_parameters(), "Contact between the shells (theory.md §12.5)");
@@ -150,6 +174,7 @@ ContactParams ContactParams::from_parameters(Teuchos::ParameterList& pl, const p
   params::validate(pl, *valid_parameters(), ctx);
   ContactParams c;
   c.penalty_scale = pl.get<double>("Penalty Scale");
+  c.friction = FrictionParams::from_parameters(pl, ctx);
   c.walls = named_entries<RigidWall>(pl.sublist("Rigid Walls"), "Point, Normal, Velocity", ctx / "Rigid Walls");
   c.bodies = named_entries<RigidBody>(pl.sublist("Rigid Bodies"), "Shape, Radius, Point, ...", ctx / "Rigid Bodies");
   c.shells = ShellContactParams::from_parameters(pl.sublist("Shells"), ctx / "Shells");

@@ -10,6 +10,19 @@
 
 namespace shellfrac::solver {
 
+/// Coulomb friction of a contact (docs/theory.md §12.6): "Friction Coefficient" (mu_d, while sliding) and "Static
+/// Friction Coefficient" (mu_s >= mu_d, the limit of sticking; by default mu_d), in "Contact" for the rigid walls and
+/// bodies and in "Contact->Shells" for the shells.
+struct FrictionParams {
+  double dynamic_coefficient = 0;
+  double static_coefficient = 0;
+  bool enabled() const { return static_coefficient > 0; }
+  /// Adds the two parameters to a sublist's valid parameters.
+  static void add_valid_parameters(Teuchos::ParameterList& pl);
+  /// Reads them from a validated sublist. InputError if mu_s < mu_d.
+  static FrictionParams from_parameters(const Teuchos::ParameterList& pl, const params::Context& ctx);
+};
+
 /// "Contact->Rigid Walls-><name>": the plane through Point with unit Normal, moving at a constant Velocity. The
 /// shells are on the side the normal points to; the wall pushes back any point of a shell's offset surface
 /// (mid-surface - h/2 along the normal) that passes behind it.
@@ -17,7 +30,7 @@ struct RigidWall {
   std::string name;
   Vec3 point{0, 0, 0};
   Vec3 normal{0, 0, 1};    ///< unit (normalized from the input)
-  Vec3 velocity{0, 0, 0};  ///< of the plane [length/time]; its tangential part does nothing (frictionless)
+  Vec3 velocity{0, 0, 0};  ///< of the plane [length/time]; its tangential part drags the shells with friction
   /// The wall's point at time t: point + velocity t.
   Vec3 point_at(double t) const {
     return {point[0] + velocity[0] * t, point[1] + velocity[1] * t, point[2] + velocity[2] * t};
@@ -55,6 +68,7 @@ struct ShellContactParams {
   std::vector<std::string> blocks;  ///< the blocks in contact; {"all"}: every block; empty: no shell contact
   double penalty_scale = 0.05;      ///< s of a pair's stiffness s mu / dt^2 (theory.md §12.5)
   double search_margin = 0;         ///< of the candidate lists [length]; 0: the largest thickness in contact
+  FrictionParams friction;          ///< between the shells
   bool enabled() const { return !blocks.empty(); }
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
   static ShellContactParams from_parameters(Teuchos::ParameterList& pl, const params::Context& ctx);
@@ -64,6 +78,7 @@ struct ShellContactParams {
 /// §12.2: with the default safety factor the step stays stable, which the set-up checks).
 struct ContactParams {
   double penalty_scale = 0.25;
+  FrictionParams friction;  ///< between the shells and the walls and bodies
   std::vector<RigidWall> walls;
   std::vector<RigidBody> bodies;
   ShellContactParams shells;

@@ -106,6 +106,7 @@ struct ShellState {
   Scalars external_work, reaction_work, damping_dissipation;  ///< accumulated work accounts per element
   Scalars plastic_work;          ///< accumulated plastic work per element (docs/theory.md §4.2)
   Scalars element_activation_loss;  ///< strain energy released by switching liftings off (docs/theory.md §9.6)
+  Scalars friction_dissipation;  ///< accumulated energy taken by friction at the element's nodes (theory.md §12.6)
   /// Committed plastic state at each area point of each owned element (empty without plasticity).
   std::vector<materials::PlasticState> plastic;
   // Interface rows.
@@ -130,6 +131,7 @@ struct ShellState {
     visit("external_work", s.external_work), visit("reaction_work", s.reaction_work);
     visit("damping_dissipation", s.damping_dissipation), visit("plastic_work", s.plastic_work);
     visit("activation_loss", s.element_activation_loss), visit("gext", s.external_director_force);
+    visit("friction_dissipation", s.friction_dissipation);
   }
   /// The same for the interface fields (mode is a std::vector<int>).
   template <class State, class Visit>

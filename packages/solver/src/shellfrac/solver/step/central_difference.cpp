@@ -226,11 +226,13 @@ void CentralDifference::step(ShellState& s, double dt, double t1) {
 
 void CentralDifference::external_forces(double t, ShellState& s) {
   loads_.external_forces(t, s, s.external_force, s.external_director_force);
-  if (!walls_.empty()) walls_.add_forces(t, s, s.external_force);
-  if (!bodies_.empty()) bodies_.add_forces(s, s.bodies, s.external_force);
+  // The friction's dissipation is booked over the step that ends at t: none at the start (t = s.time).
+  const double step = t - s.time;
+  if (!walls_.empty()) walls_.add_forces(t, step, s);
+  if (!bodies_.empty()) bodies_.add_forces(step, s);
   if (shells_.enabled()) {
     ScopedTimer timer(times_.contact);
-    shells_.add_forces(s, s.external_force);
+    shells_.add_forces(step, s);
   }
 }
 
