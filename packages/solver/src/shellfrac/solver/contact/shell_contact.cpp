@@ -63,6 +63,45 @@ double centroid_distance2(const double* f, const double* g) {
   return d2;
 }
 
+/// A face's bounds (bound_values numbers): a sphere around its six nodes (centre, radius) and their box (lo, hi).
+/// Both contain the sub-triangles, which lie in the nodes' convex hull.
+constexpr int bound_values = 10;
+
+/// How far the farthest of a face's six nodes (18 values) has moved from where it was (18 values).
+double largest_move(const double* fx, const double* before) {
+  double d2 = 0;
+  for (int A = 0; A < position_nodes; ++A) {
+    const double d[3] = {fx[3 * A] - before[3 * A], fx[3 * A + 1] - before[3 * A + 1], fx[3 * A + 2] - before[3 * A + 2]};
+    d2 = std::max(d2, d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  }
+  return std::sqrt(d2);
+}
+
+void write_face_bounds(const double* fx, double* out) {
+  for (int i = 0; i < 3; ++i) {
+    double c = 0, lo = fx[i], hi = fx[i];
+    for (int A = 0; A < position_nodes; ++A) c += fx[3 * A + i], lo = std::min(lo, fx[3 * A + i]), hi = std::max(hi, fx[3 * A + i]);
+    out[i] = c / position_nodes, out[4 + i] = lo, out[7 + i] = hi;
+  }
+  double r2 = 0;
+  for (int A = 0; A < position_nodes; ++A) {
+    const double d[3] = {fx[3 * A] - out[0], fx[3 * A + 1] - out[1], fx[3 * A + 2] - out[2]};
+    r2 = std::max(r2, d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  }
+  out[3] = std::sqrt(r2);
+}
+
+/// A lower bound of the distance from p to a face, from its bounds: the larger of the sphere's and the box's.
+double distance_bound(const double* p, const double* bounds) {
+  const double d[3] = {p[0] - bounds[0], p[1] - bounds[1], p[2] - bounds[2]};
+  double box2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double out = std::max({bounds[4 + i] - p[i], 0.0, p[i] - bounds[7 + i]});
+    box2 += out * out;
+  }
+  return std::max(std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - bounds[3], std::sqrt(box2));
+}
+
 }  // namespace
 
 ShellContact::ShellContact(const ContactParams& params, const ShellModel& model, double dt,
@@ -150,7 +189,6 @@ void ShellContact::search() {
     for (int A = 0; A < position_nodes; ++A) f.mean_mass += *model_.mass.at(le, A) / position_nodes;
     for (int v = 0; v < 3; ++v) f.vertex[v] = dm.mesh_node(le, v);
   }
-  x_search_.assign(face_x_.begin(), face_x_.begin() + std::ptrdiff_t(owned_faces * face_values));
   face_X_.resize(owned_faces * face_values);
   for (std::size_t i = 0; i < owned_faces; ++i)
     std::copy(model_.X.at(nodes_of_[i]), model_.X.at(nodes_of_[i]) + face_values, face_X_.begin() + std::ptrdiff_t(i * face_values));
@@ -195,6 +233,7 @@ void ShellContact::search() {
   face_x_.resize(faces_.size() * face_values);
   if (friction_.enabled()) face_v_.resize(faces_.size() * face_values);
   exchange_ghost_positions();
+  x_search_ = face_x_;
   for (std::size_t i = owned_faces; i < faces_.size(); ++i)
     face_boxes.push_back(Box::around(&face_x_[i * face_values], position_nodes).inflated(faces_[i].half_thickness));
 
@@ -219,8 +258,12 @@ void ShellContact::search() {
       if (shares_vertex) continue;
       // Shells that overlap in the reference configuration (a thick shell's neighbours beyond the vertex ring,
       // parts placed inside each other) never contact: the pair is the shell itself, not two surfaces meeting.
-      const FacePoint ref = nearest_point_of_face(X + 3 * k, X + std::size_t(j) * face_values);
-      if (ref.distance < own.half_thickness + f.half_thickness) continue;
+      const double overlap = own.half_thickness + f.half_thickness;
+      double bounds_ref[bound_values];
+      write_face_bounds(X + std::size_t(j) * face_values, bounds_ref);
+      if (distance_bound(X + 3 * k, bounds_ref) < overlap * (1 + 1e-9) &&  // the bound allowed its round-off
+          nearest_point_of_face(X + 3 * k, X + std::size_t(j) * face_values).distance < overlap)
+        continue;
       list.push_back(j);
     }
     std::sort(list.begin(), list.end(), [&](int a, int b) { return faces[a].gid < faces[b].gid; });
@@ -232,6 +275,21 @@ void ShellContact::search() {
     candidate_offset_.push_back(int(candidates_.size()));
   }
   candidate_gap_.resize(candidates_.size());
+
+  // Each candidate's gap at the search: find_contacts need not measure a face that cannot have come near enough
+  // since (its gap now is at least this less how far the node and the face's nodes have moved).
+  gap_at_search_.resize(candidates_.size());
+  double* gap_at_search = gap_at_search_.data();
+  const int* offset = candidate_offset_.data();
+  const int* candidates = candidates_.data();
+  Kokkos::parallel_for("shellfrac::ContactGapsAtSearch", KernelRange(0, nodes), [=](const std::size_t k) {
+    const Face& own = faces[k / position_nodes];
+    for (int n = offset[k]; n < offset[k + 1]; ++n) {
+      const int j = candidates[n];
+      gap_at_search[n] = nearest_point_of_face(x + 3 * k, x + std::size_t(j) * face_values).distance -
+                         (own.half_thickness + faces[j].half_thickness);
+    }
+  });
   searched_ = true;
 }
 
@@ -275,15 +333,37 @@ void ShellContact::find_contacts(const double step) {
   const double penalty = penalty_per_dt2_, tie = tie_, dt = dt_;
   const FrictionParams friction = friction_;
   const double* v = face_v_.data();
+  const double* at_search = x_search_.data();
+  const double* gap_at_search = gap_at_search_.data();
+  face_bounds_.resize(faces_.size() * (bound_values + 1));
+  double* bounds = face_bounds_.data();  // per face: its bounds, then how far it has moved since the search
+  Kokkos::parallel_for("shellfrac::ContactFaceBounds", KernelRange(0, faces_.size()), [=](const std::size_t j) {
+    double* b = bounds + (bound_values + 1) * j;
+    write_face_bounds(x + j * face_values, b);
+    b[bound_values] = largest_move(x + j * face_values, at_search + j * face_values);
+  });
   Kokkos::parallel_for("shellfrac::ShellContact", KernelRange(0, contact_.size()), [=](const std::size_t k) {
     const std::size_t e = k / position_nodes;
     const Face& own = faces[e];
     const double* p = x + 3 * k;
+    const double* q = at_search + 3 * k;
+    const double moved = std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
     double nearest = std::numeric_limits<double>::infinity();
     for (int n = offset[k]; n < offset[k + 1]; ++n) {
+      // Only gaps below the tie band's upper end (nearest + tie with nearest < 0) can matter, so a face whose gap
+      // is bounded from below by more than twice the band (room for round-off) keeps the bound as its gap: the same
+      // faces are chosen, with the same gaps, as if every face were measured. The bounds, cheapest first: the gap
+      // at the search less how far the node and the face have moved since; the face's sphere and box now.
       const int j = candidates[n];
-      gaps[n] = nearest_point_of_face(p, x + std::size_t(j) * face_values).distance -
-                (own.half_thickness + faces[j].half_thickness);
+      const double* b = bounds + (bound_values + 1) * std::size_t(j);
+      const double since_search = gap_at_search[n] - moved - b[bound_values];
+      if (since_search > 2 * tie) {
+        gaps[n] = since_search;
+      } else {
+        const double reach = own.half_thickness + faces[j].half_thickness;
+        const double bound = distance_bound(p, b) - reach;
+        gaps[n] = bound > 2 * tie ? bound : nearest_point_of_face(p, x + std::size_t(j) * face_values).distance - reach;
+      }
       nearest = std::min(nearest, gaps[n]);
     }
     out[k] = NodeContact{};

@@ -92,9 +92,11 @@ class ShellContact {
   std::vector<double> face_x_;          ///< 18 per face
   std::vector<double> face_X_;          ///< the faces' reference positions, 18 per face
   std::vector<double> face_v_;          ///< with friction: the faces' velocities, 18 per face
-  std::vector<double> x_search_;        ///< the nodes' positions at the last search (18 per nodes_of_ entry)
+  std::vector<double> x_search_;        ///< every face's nodes at the last search (18 per face)
   std::vector<int> candidate_offset_{0}, candidates_;  ///< per node: face indices, ascending face gid
   std::vector<double> candidate_gap_;                  ///< the step's gap to each candidate (find_contacts)
+  std::vector<double> gap_at_search_;                  ///< each candidate's gap at the search
+  std::vector<double> face_bounds_;                    ///< the step's sphere and box around each face, its move
   std::vector<std::vector<LocalId>> send_;  ///< per rank: owned faces (indices into faces_) sent as its ghosts
   std::vector<int> receive_count_;          ///< per rank: the ghosts it sends
   std::vector<NodeContact> contact_;        ///< per node
