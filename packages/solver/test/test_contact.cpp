@@ -169,8 +169,12 @@ TEST(RigidWallFriction, BlockSlidesAtMuGAndStops) {
     EXPECT_NEAR(u, b.u, 1e-9 * V) << "step " << step;
     EXPECT_NEAR(x, b.x, 1e-9 * V * dt * step) << "step " << step;
     const double t = step * dt;
-    if (t < V / (mu_d * g) - dt) EXPECT_NEAR(u, V - mu_d * g * t, 0.5 * mu_d * g * dt) << "step " << step;
-    if (t > V / (mu_d * g) + dt) EXPECT_LT(std::abs(u), 1e-15 * V) << "step " << step;  // stuck (to round-off)
+    if (t < V / (mu_d * g) - dt) {
+      EXPECT_NEAR(u, V - mu_d * g * t, 0.5 * mu_d * g * dt) << "step " << step;
+    }
+    if (t > V / (mu_d * g) + dt) {
+      EXPECT_LT(std::abs(u), 1e-15 * V) << "step " << step;  // stuck (to round-off)
+    }
   }
   const auto [x, u] = block_motion(model);
   EXPECT_NEAR(x, V * V / (2 * mu_d * g), V * dt);

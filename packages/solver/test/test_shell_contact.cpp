@@ -203,11 +203,11 @@ TEST(ShellContact, TwoPlatesMeetingHeadOnExchangeTheirVelocities) {
 // normal impulse 2 M V (Routh's rough-body impact; Stronge, Impact Mechanics, 2000, §3.2), within 1 % (nodes near
 // the plates' edges, where the nearest point lies on an edge and the normal tilts). The tangential momentum is
 // conserved to round-off (the reactions are the node forces' opposites); the energy balance closes to 1e-3 of the
-// initial kinetic energy (measured 1e-4), and the energy friction took in the history's friction_dissipation is the
+// initial kinetic energy (measured 2.5e-5), and the energy friction took in the history's friction_dissipation is the
 // loss of kinetic and strain energy within 3 %: the dissipation is booked as -f^{n+1} . v_slip^{n+1/2} dt, the
 // external work by the trapezoidal rule, and the two differ by (1/2) sum (f^{n+1} - f^n) . dx_slip, which is not
-// zero when the normal force rises while the slip is fast and falls when it is slower (measured 1.8 % over this
-// contact of 13 steps; theory.md §12.6).
+// zero when the normal force rises while the slip is fast and falls when it is slower (measured 1.1 % over this
+// contact of 28 steps at the default penalty; theory.md §12.6).
 TEST(ShellContact, FrictionTakesMuTimesTheNormalImpulse) {
   const auto dir = work_dir("shell_contact_friction");
   auto deck = two_plates_deck(dir);
@@ -249,6 +249,7 @@ TEST(ShellContact, FrictionTakesMuTimesTheNormalImpulse) {
   const auto r = dyn.record();
   const double dissipated = dyn.contact_values().back();
   RecordProperty("dissipated_over_e0", std::to_string(dissipated / e0));
+  RecordProperty("dissipated_over_energy_lost", std::to_string(dissipated / (e0 - r.kinetic - r.strain - r.penalty)));
   RecordProperty("contact_steps", contact_steps);
   RecordProperty("balance_error_over_e0", std::to_string(solver::energy_balance_error(r, e0) / e0));
   EXPECT_LT(std::abs(solver::energy_balance_error(r, e0)), 1e-3 * e0);
@@ -337,8 +338,9 @@ TEST(ShellContact, RestartDuringAContactWithFrictionIsBitwise) {
       sim.run();
     }
     MPI_Barrier(MPI_COMM_WORLD);
-    if (parallel::rank() == 0)
+    if (parallel::rank() == 0) {
       EXPECT_EQ(slurp(continuous.history_path()), slurp(dir + "/run_history.csv")) << dir;
+    }
   };
   broken(root + "/same_ranks", MPI_COMM_WORLD, MPI_COMM_WORLD);
   if (parallel::size() == 3) {

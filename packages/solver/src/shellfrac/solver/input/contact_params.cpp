@@ -135,7 +135,7 @@ Teuchos::RCP<const Teuchos::ParameterList> ShellContactParams::valid_parameters(
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("Shells"));
   pl->set("Blocks", Teuchos::Array<std::string>(),
           "The blocks whose shells contact each other (and themselves): block names, or {all}; empty: none");
-  pl->set("Penalty Scale", 0.05,
+  pl->set("Penalty Scale", 0.01,
           "A node of mass m_A has the stiffness Penalty Scale m_A mbar_F / ((mbar_A + mbar_F) dt^2) against another "
           "element (mbar: the two elements' mean node masses; theory.md §12.5)",
           params::positive_double());

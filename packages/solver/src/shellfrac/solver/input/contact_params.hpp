@@ -66,7 +66,7 @@ struct RigidBody {
 /// listed block against the mid-surfaces of the other elements of the listed blocks, at the offset (h_A + h_B) / 2.
 struct ShellContactParams {
   std::vector<std::string> blocks;  ///< the blocks in contact; {"all"}: every block; empty: no shell contact
-  double penalty_scale = 0.05;      ///< s of a pair's stiffness s mu / dt^2 (theory.md §12.5)
+  double penalty_scale = 0.01;      ///< s of a pair's stiffness s mu / dt^2 (theory.md §12.5)
   double search_margin = 0;         ///< of the candidate lists [length]; 0: the largest thickness in contact
   FrictionParams friction;          ///< between the shells
   bool enabled() const { return !blocks.empty(); }
