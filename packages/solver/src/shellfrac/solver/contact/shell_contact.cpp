@@ -159,13 +159,9 @@ void ShellContact::pack_owned_motion(const ShellState& s) {
 }
 
 bool ShellContact::moved_beyond_margin() const {
-  const double limit = 0.25 * margin_ * margin_;  // (margin / 2)^2
   bool moved = false;
-  for (std::size_t k = 0; k < nodes_of_.size() * position_nodes && !moved; ++k) {
-    double d2 = 0;
-    for (int c = 0; c < 3; ++c) d2 += (face_x_[3 * k + c] - x_search_[3 * k + c]) * (face_x_[3 * k + c] - x_search_[3 * k + c]);
-    moved = d2 > limit;
-  }
+  for (std::size_t i = 0; i < nodes_of_.size() && !moved; ++i)
+    moved = largest_move(&face_x_[i * face_values], &x_search_[i * face_values]) > 0.5 * margin_;
   return parallel::any(moved, model_.dm.comm());
 }
 
@@ -245,6 +241,10 @@ void ShellContact::search() {
   const Face* faces = faces_.data();
   const double* x = face_x_.data();
   const double* X = face_X_.data();
+  // The faces' bounds in the reference configuration, for the overlap test.
+  std::vector<double> reference_bounds(faces_.size() * bound_values);
+  for (std::size_t j = 0; j < faces_.size(); ++j) write_face_bounds(&face_X_[j * face_values], &reference_bounds[j * bound_values]);
+  const double* X_bounds = reference_bounds.data();
   const double node_reach = margin_ + tie_;  // the tie band too: every face within it of a contact is a candidate
   Kokkos::parallel_for("shellfrac::ContactCandidates", KernelRange(0, nodes), [=](const std::size_t k) {
     const Face& own = faces[k / position_nodes];
@@ -259,9 +259,7 @@ void ShellContact::search() {
       // Shells that overlap in the reference configuration (a thick shell's neighbours beyond the vertex ring,
       // parts placed inside each other) never contact: the pair is the shell itself, not two surfaces meeting.
       const double overlap = own.half_thickness + f.half_thickness;
-      double bounds_ref[bound_values];
-      write_face_bounds(X + std::size_t(j) * face_values, bounds_ref);
-      if (distance_bound(X + 3 * k, bounds_ref) < overlap * (1 + 1e-9) &&  // the bound allowed its round-off
+      if (distance_bound(X + 3 * k, X_bounds + std::size_t(j) * bound_values) < overlap * (1 + 1e-9) &&  // the bound allowed its round-off
           nearest_point_of_face(X + 3 * k, X + std::size_t(j) * face_values).distance < overlap)
         continue;
       list.push_back(j);
