@@ -73,19 +73,17 @@ struct Model {
     std::vector<double> fn(ne * 27), gn(ne * 18);
     double total = 0;
     for (GlobalId e = 0; e < ne; ++e) {
-      double xe[6][3], te[3][3], xn[3][3][3], tn[3][2][3], f[6][3], g[3][3], fk[3][3][3], gk[3][2][3];
-      bool lf[3];
-      element_inputs(e, xe, te, lf, xn, tn);
-      total += dg_element_forces(refs[e], xe, te, lf, xn, tn, law, f, g, fk, gk);
+      DgElementForces out;
+      total += dg_element_forces(refs[e], element_nodes(e), law, out);
       for (int A = 0; A < 6; ++A)
-        for (int c = 0; c < 3; ++c) F[e * 18 + A * 3 + c] += f[A][c];
+        for (int c = 0; c < 3; ++c) F[e * 18 + A * 3 + c] += out.f[A][c];
       for (int a = 0; a < 3; ++a)
-        for (int c = 0; c < 3; ++c) G[e * 9 + a * 3 + c] += g[a][c];
+        for (int c = 0; c < 3; ++c) G[e * 9 + a * 3 + c] += out.g[a][c];
       for (int k = 0; k < 3; ++k)
         for (int j = 0; j < 3; ++j)
           for (int c = 0; c < 3; ++c) {
-            fn[e * 27 + k * 9 + j * 3 + c] = fk[k][j][c];
-            if (j < 2) gn[e * 18 + k * 6 + j * 3 + c] = gk[k][j][c];
+            fn[e * 27 + k * 9 + j * 3 + c] = out.neighbour[k].f[j][c];
+            if (j < 2) gn[e * 18 + k * 6 + j * 3 + c] = out.neighbour[k].g[j][c];
           }
     }
     // gather the neighbours' lifting fluxes: element e, edge k receives what its neighbour wrote for it
@@ -101,24 +99,16 @@ struct Model {
       }
     for (std::size_t i = 0; i < topo.interfaces.size(); ++i) {
       const auto& f = topo.interfaces[i];
-      double xa[6][3], ta[3][3], xb[6][3], tb[3][3], xm[3][3], tm[2][3], xp[3][3], tp[2][3];
-      double fm[3][3], gm[2][3], fp[3][3], gp[2][3];
-      load(f.minus.element, xa, ta);
-      load(f.plus.element, xb, tb);
+      EdgeForces on_minus, on_plus;
+      total += dg_penalty_forces(iref[i], beta_x, beta_t, edge_nodes(f.minus.element, f.minus.local_edge),
+                                 edge_nodes(f.plus.element, f.plus.local_edge), on_minus, on_plus);
       for (int j = 0; j < 3; ++j)
         for (int c = 0; c < 3; ++c) {
-          xm[j][c] = xa[edge_node(f.minus.local_edge, j)][c];
-          xp[j][c] = xb[edge_node(f.plus.local_edge, j)][c];
-          if (j < 2) tm[j][c] = ta[edge_node(f.minus.local_edge, j)][c], tp[j][c] = tb[edge_node(f.plus.local_edge, j)][c];
-        }
-      total += dg_penalty_forces(iref[i], beta_x, beta_t, xm, tm, xp, tp, fm, gm, fp, gp);
-      for (int j = 0; j < 3; ++j)
-        for (int c = 0; c < 3; ++c) {
-          F[f.minus.element * 18 + edge_node(f.minus.local_edge, j) * 3 + c] += fm[j][c];
-          F[f.plus.element * 18 + edge_node(f.plus.local_edge, j) * 3 + c] += fp[j][c];
+          F[f.minus.element * 18 + edge_node(f.minus.local_edge, j) * 3 + c] += on_minus.f[j][c];
+          F[f.plus.element * 18 + edge_node(f.plus.local_edge, j) * 3 + c] += on_plus.f[j][c];
           if (j < 2) {
-            G[f.minus.element * 9 + edge_node(f.minus.local_edge, j) * 3 + c] += gm[j][c];
-            G[f.plus.element * 9 + edge_node(f.plus.local_edge, j) * 3 + c] += gp[j][c];
+            G[f.minus.element * 9 + edge_node(f.minus.local_edge, j) * 3 + c] += on_minus.g[j][c];
+            G[f.plus.element * 9 + edge_node(f.plus.local_edge, j) * 3 + c] += on_plus.g[j][c];
           }
         }
     }
@@ -132,22 +122,27 @@ struct Model {
 
   /// The inputs of dg_kinematics / dg_element_forces for element e: its own nodes, its lift flags and the
   /// neighbours' edge nodes (neighbour's edge-local order; zero where the edge is not lifted).
-  void element_inputs(GlobalId e, double xe[6][3], double te[3][3], bool lf[3], double xn[3][3][3],
-                      double tn[3][2][3]) const {
-    load(e, xe, te);
+  DgElementNodes element_nodes(GlobalId e) const {
+    DgElementNodes in{};
+    load(e, in.x, in.t);
     for (int k = 0; k < 3; ++k) {
-      for (int j = 0; j < 3; ++j) xn[k][j][0] = xn[k][j][1] = xn[k][j][2] = 0;
-      for (int j = 0; j < 2; ++j) tn[k][j][0] = tn[k][j][1] = tn[k][j][2] = 0;
-      lf[k] = lift[e][k];
-      if (!lf[k]) continue;
-      const auto nb = topo.neighbor[e][k];
-      double xo[6][3], to[3][3];
-      load(nb.element, xo, to);
-      for (int j = 0; j < 3; ++j)
-        for (int c = 0; c < 3; ++c) xn[k][j][c] = xo[edge_node(nb.local_edge, j)][c];
-      for (int j = 0; j < 2; ++j)
-        for (int c = 0; c < 3; ++c) tn[k][j][c] = to[edge_node(nb.local_edge, j)][c];
+      in.lift[k] = lift[e][k];
+      if (in.lift[k]) in.neighbour[k] = edge_nodes(topo.neighbor[e][k].element, topo.neighbor[e][k].local_edge);
     }
+    return in;
+  }
+
+  /// The nodes of local edge k of element e, in its edge-local order.
+  EdgeNodes edge_nodes(GlobalId e, int k) const {
+    double xe[6][3], te[3][3];
+    load(e, xe, te);
+    EdgeNodes out;
+    for (int j = 0; j < 3; ++j)
+      for (int c = 0; c < 3; ++c) {
+        out.x[j][c] = xe[edge_node(k, j)][c];
+        if (j < 2) out.t[j][c] = te[edge_node(k, j)][c];
+      }
+    return out;
   }
 
  private:
@@ -209,13 +204,11 @@ struct AreaPointState {
 /// code path of dg_element_forces: dg_kinematics (with the element's lift flags and its neighbours' edge
 /// nodes), compute_strains, materials::elastic_resultants.
 inline void area_point_states(const Model& model, GlobalId e, AreaPointState out[num_area_points]) {
-  double xe[6][3], te[3][3], xn[3][3][3], tn[3][2][3], Xe[6][3];
-  bool lf[3];
-  model.element_inputs(e, xe, te, lf, xn, tn);
+  double Xe[6][3];
   for (int A = 0; A < 6; ++A)
     for (int c = 0; c < 3; ++c) Xe[A][c] = model.X[e * 18 + A * 3 + c];
   ShellKinematics kin[num_area_points];
-  dg_kinematics(model.refs[e], xe, te, lf, xn, tn, kin);
+  dg_kinematics(model.refs[e], model.element_nodes(e), kin);
   for (int q = 0; q < num_area_points; ++q) {
     AreaPointState& s = out[q];
     const double xi1 = tri6_rule.xi[q][0], xi2 = tri6_rule.xi[q][1];

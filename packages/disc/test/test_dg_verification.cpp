@@ -122,13 +122,11 @@ TEST(DgVerification, LiftingJumpIdentity) {
     for (int a = 0; a < 3; ++a)
       for (int i = 0; i < 3; ++i) model.t[displaced * 9 + a * 3 + i] += ct[i];
     for (GlobalId e = 0; e < 2; ++e) {
-      double xe[6][3], te[3][3], xn[3][3][3], tn[3][2][3], Xe[6][3];
-      bool lf[3];
-      model.element_inputs(e, xe, te, lf, xn, tn);
+      double Xe[6][3];
       for (int A = 0; A < 6; ++A)
         for (int i = 0; i < 3; ++i) Xe[A][i] = model.X[e * 18 + A * 3 + i];
       ShellKinematics kin[num_area_points];
-      dg_kinematics(model.refs[e], xe, te, lf, xn, tn, kin);
+      dg_kinematics(model.refs[e], model.element_nodes(e), kin);
       const DgElementRef& R = model.refs[e];
       AreaPointShapes S;
       area_point_shapes(S);
@@ -190,14 +188,13 @@ TEST(DgVerification, ContinuousFieldsHaveClassicalDgDerivative) {
   double worst = 0, scale = 0;
   int lifted = 0;
   for (GlobalId e = 0; e < m.num_elements(); ++e) {
-    double xe[6][3], te[3][3], xn[3][3][3], tn[3][2][3];
-    bool lf[3];
-    const bool none[3] = {false, false, false};
-    model.element_inputs(e, xe, te, lf, xn, tn);
-    lifted += lf[0] + lf[1] + lf[2];
+    const DgElementNodes in = model.element_nodes(e);
+    DgElementNodes unlifted = in;
+    unlifted.lift[0] = unlifted.lift[1] = unlifted.lift[2] = false;
+    lifted += in.lift[0] + in.lift[1] + in.lift[2];
     ShellKinematics kdg[num_area_points], kcl[num_area_points];
-    dg_kinematics(model.refs[e], xe, te, lf, xn, tn, kdg);
-    dg_kinematics(model.refs[e], xe, te, none, xn, tn, kcl);
+    dg_kinematics(model.refs[e], in, kdg);
+    dg_kinematics(model.refs[e], unlifted, kcl);
     for (int q = 0; q < num_area_points; ++q)
       for (int i = 0; i < 2; ++i)
         for (int r = 0; r < 3; ++r) {

@@ -35,11 +35,13 @@ disc::DgInterfaceRef straight_edge() {
 // directors (6). A partly opened, bent, twisted and turned edge along y, the minus side on x < 0 (its outward
 // co-normal +x... the plus side's is -x), directors about +z.
 struct Nodes {
-  double v[30];
-  double (*xm())[3] { return reinterpret_cast<double(*)[3]>(v); }
-  double (*tm())[3] { return reinterpret_cast<double(*)[3]>(v + 9); }
-  double (*xp())[3] { return reinterpret_cast<double(*)[3]>(v + 15); }
-  double (*tp())[3] { return reinterpret_cast<double(*)[3]>(v + 24); }
+  disc::EdgeNodes minus, plus;
+  /// Nodal value i of the 30, in the order above.
+  double& value(int i) {
+    disc::EdgeNodes& side = i < 15 ? minus : plus;
+    const int k = i % 15;
+    return k < 9 ? side.x[k / 3][k % 3] : side.t[(k - 9) / 3][(k - 9) % 3];
+  }
 };
 
 Nodes opened_edge(double opening) {
@@ -51,14 +53,14 @@ Nodes opened_edge(double opening) {
     const double xm[3] = {-0.3 * opening + 1e-5 * y / L, y + 0.2 * opening, 0.4 * opening * (1 - s[j])};
     const double yp = (1 - s[j]) * L;
     const double xp[3] = {0.3 * opening, yp - 0.1 * opening, -0.2 * opening + 3e-6 * s[j]};
-    for (int c = 0; c < 3; ++c) n.xm()[j][c] = xm[c], n.xp()[j][c] = xp[c];
+    for (int c = 0; c < 3; ++c) n.minus.x[j][c] = xm[c], n.plus.x[j][c] = xp[c];
   }
   // Director tilts whose jump h |[[t]]| is of the size of the opening.
   const double a = opening / h;
   const double tm[2][3] = {{0.5 * a, 0.2 * a, 1.0}, {0.8 * a, -0.3 * a, 1.0}};
   const double tp[2][3] = {{-0.4 * a, 0.1 * a, 1.0}, {-0.2 * a, 0.5 * a, 1.0}};
   for (int j = 0; j < 2; ++j)
-    for (int c = 0; c < 3; ++c) n.tm()[j][c] = tm[j][c], n.tp()[j][c] = tp[j][c];
+    for (int c = 0; c < 3; ++c) n.minus.t[j][c] = tm[j][c], n.plus.t[j][c] = tp[j][c];
   return n;
 }
 
@@ -71,13 +73,12 @@ Evaluation evaluate(const materials::CohesiveParams& p, Nodes n, const double of
   const disc::DgInterfaceRef I = straight_edge();
   double dmax[3] = {delta_max, delta_max, delta_max};
   double nu[3][3] = {{1, 0, 0}, {1, 0, 0}, {1, 0, 0}};
-  double fm[3][3], gm[2][3], fp[3][3], gp[2][3];
-  const CohesiveInterfaceResult r = cohesive_interface_forces(I, p, n.xm(), n.tm(), n.xp(), n.tp(), offset, dmax, nu,
-                                                              fm, gm, fp, gp);
+  disc::EdgeForces on_minus, on_plus;
+  const CohesiveInterfaceResult r = cohesive_interface_forces(I, p, n.minus, n.plus, offset, dmax, nu, on_minus, on_plus);
   EXPECT_EQ(dmax[0], delta_max) << "the opening must stay below delta_max for a smooth energy";
   Evaluation e{r.stored, {}};
-  for (int i = 0; i < 9; ++i) e.force[i] = fm[i / 3][i % 3], e.force[15 + i] = fp[i / 3][i % 3];
-  for (int i = 0; i < 6; ++i) e.force[9 + i] = gm[i / 3][i % 3], e.force[24 + i] = gp[i / 3][i % 3];
+  for (int i = 0; i < 9; ++i) e.force[i] = on_minus.f[i / 3][i % 3], e.force[15 + i] = on_plus.f[i / 3][i % 3];
+  for (int i = 0; i < 6; ++i) e.force[9 + i] = on_minus.g[i / 3][i % 3], e.force[24 + i] = on_plus.g[i / 3][i % 3];
   return e;
 }
 
@@ -91,7 +92,7 @@ double gradient_defect(const materials::CohesiveParams& p, double opening, const
   for (int i = 0; i < 30; ++i) {
     const double step = 1e-3 * (i % 15 < 9 ? opening : opening / h);  // positions [m], directors [-]
     Nodes up = n, down = n;
-    up.v[i] += step, down.v[i] -= step;
+    up.value(i) += step, down.value(i) -= step;
     const double fd = (evaluate(p, up, offset, delta_max).energy - evaluate(p, down, offset, delta_max).energy) / (2 * step);
     defect = std::max(defect, std::abs(fd - e.force[i]));
   }

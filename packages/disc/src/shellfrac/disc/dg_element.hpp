@@ -68,6 +68,19 @@ KOKKOS_INLINE_FUNCTION EdgePointShapes edge_point_shapes(double s, double s_othe
   return e;
 }
 
+/// The nodes of one edge of an element in edge-local order (edge_node): the positions of its 3 position nodes
+/// (vertex, vertex, mid-side) and the directors of its 2 director nodes (the vertices).
+struct EdgeNodes {
+  double x[3][3];
+  double t[2][3];
+};
+
+/// Forces on the nodes of one edge, in the same order: on the 3 position nodes and the 2 director nodes.
+struct EdgeForces {
+  double f[3][3];
+  double g[2][3];
+};
+
 /// Reference data of one local edge of an element.
 struct DgEdgeRef {
   double omega[num_edge_points];      ///< omega_g = w_g |dX/ds|: reference arc-length weights (theory.md §1.4)
@@ -233,19 +246,34 @@ KOKKOS_INLINE_FUNCTION void build_dg_element_ref(const double X[6][3], const dou
   }
 }
 
+/// What the element forces read of one element (theory.md §5.4): its nodes and, across each lifted edge, the
+/// neighbour's edge nodes in the neighbour's edge-local order.
+struct DgElementNodes {
+  double x[6][3];           ///< current positions of the P2 nodes
+  double t[3][3];           ///< current directors of the P1 (vertex) nodes
+  bool lift[3];             ///< edge k is an intact interface with a single neighbour (its jump is lifted)
+  EdgeNodes neighbour[3];   ///< across edge k: the neighbour's edge nodes (read only where lift[k])
+};
+
+/// What the element forces write: the forces on the element's own nodes and the lifting fluxes on each
+/// neighbour's edge nodes (zero across an edge that is not lifted).
+struct DgElementForces {
+  double f[6][3];           ///< on the position nodes
+  double g[3][3];           ///< on the director nodes
+  EdgeForces neighbour[3];  ///< on the neighbour's edge nodes across edge k, in the neighbour's edge-local order
+};
+
 /// DG kinematics of one element at its area points (theory.md §2, §5.2):
 /// a_i = d^DG_i phi_h (P1 lifting of the position jumps), d_i = d^DG_i t_h (P0 lifting of the director
 /// jumps), both in the local Cartesian reference frame, and the interpolated director t_h(xi_q).
-///   x[6][3], t[3][3]: the element's current node positions and vertex directors.
-///   lift[k]: edge k is an intact interface with a single neighbour (its jump is lifted).
-///   xn[k][j][3], tn[k][j][3]: the neighbour's edge nodes across edge k, in the neighbour's edge-local order
-///   (read only where lift[k] is true).
+///   e: the element's nodes and its neighbours' edge nodes (DgElementNodes).
 /// S, W: the reference triangle's shape data and the element's lifting weights.
 /// Output (overwritten): kin[q] for q = 0..num_area_points-1.
 KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const AreaPointShapes& S, const LiftingWeights& W,
-                                          const double x[6][3], const double t[3][3], const bool lift[3],
-                                          const double xn[3][3][3], const double tn[3][2][3],
-                                          ShellKinematics kin[num_area_points]) {
+                                          const DgElementNodes& e, ShellKinematics kin[num_area_points]) {
+  const auto& x = e.x;
+  const auto& t = e.t;
+  const auto& lift = e.lift;
   // 1. Liftings of the one-sided jumps [u]^E = u^E - u^E' (theory.md §5.2).
   double Rx[3][2][3][3] = {};  // [k][alpha][component][psi]
   double Rt[3][2][3] = {};     // [k][alpha][component]
@@ -256,8 +284,8 @@ KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const AreaPoint
       const double *no = sh.p2, *nn = sh.p2_other, *lo = sh.p1, *ln = sh.p1_other;
       for (int c = 0; c < 3; ++c) {
         double jx = 0, jt = 0;
-        for (int j = 0; j < 3; ++j) jx += no[j] * x[edge_node(k, j)][c] - nn[j] * xn[k][j][c];
-        for (int j = 0; j < 2; ++j) jt += lo[j] * t[edge_node(k, j)][c] - ln[j] * tn[k][j][c];
+        for (int j = 0; j < 3; ++j) jx += no[j] * x[edge_node(k, j)][c] - nn[j] * e.neighbour[k].x[j][c];
+        for (int j = 0; j < 2; ++j) jt += lo[j] * t[edge_node(k, j)][c] - ln[j] * e.neighbour[k].t[j][c];
         for (int al = 0; al < 2; ++al) {
           for (int b = 0; b < 3; ++b) Rx[k][al][c][b] += jx * W.Wu[k][gp][al][b];
           Rt[k][al][c] += jt * W.Wt[k][gp][al];
@@ -289,14 +317,13 @@ KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const AreaPoint
 }
 
 /// The same, for one element on its own (verification and diagnostics).
-KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const double x[6][3], const double t[3][3],
-                                          const bool lift[3], const double xn[3][3][3], const double tn[3][2][3],
+KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const DgElementNodes& e,
                                           ShellKinematics kin[num_area_points]) {
   AreaPointShapes S;
   area_point_shapes(S);
   LiftingWeights W;
   lifting_weights(R, W);
-  dg_kinematics(R, S, W, x, t, lift, xn, tn, kin);
+  dg_kinematics(R, S, W, e, kin);
 }
 
 /// f[q][c] <- (Pi f)(xi_q): the P1 L2 projection on the element of point values f[q][0..n-1] (P from
@@ -344,19 +371,72 @@ struct EdgeTractions {
   double at[3][num_edge_points][6];
 };
 
+/// The sums over the area points that the edge terms need (theory.md §5.4): the moments of the parametric
+/// resultants n^alpha, m^alpha against the P1 lifting functions psi, sum_q w_q j0_q (.) (x) psi(xi_q).
+struct ResultantMoments {
+  double x[2][3][3] = {};  ///< [alpha][component][psi]: sum_q w j0 n^alpha (x) psi
+  double t[2][3] = {};     ///< [alpha][component]:      sum_q w j0 m^alpha
+  double m[2][3][3] = {};  ///< [alpha][component][psi]: sum_q w j0 m^alpha (x) psi (only for edge tractions)
+};
+
+/// The edge tractions of the projected resultants (theory.md §9.5 step 1):
+/// W^u_{g,alpha} = 1/2 omega_g nu_alpha Mpsi^-1 psi(xi_g).
+KOKKOS_INLINE_FUNCTION void edge_tractions_of(const DgElementRef& R, const LiftingWeights& W,
+                                              const ResultantMoments& Pi, EdgeTractions& edge_tractions) {
+  for (int k = 0; k < 3; ++k)
+    for (int gp = 0; gp < num_edge_points; ++gp) {
+      const DgEdgeRef& E = R.edge[k];
+      const double s = 2.0 / E.omega[gp];
+      for (int c = 0; c < 3; ++c) {
+        double n = 0, m = 0;
+        for (int al = 0; al < 2; ++al)
+          for (int b = 0; b < 3; ++b) n += Pi.x[al][c][b] * W.Wu[k][gp][al][b], m += Pi.m[al][c][b] * W.Wu[k][gp][al][b];
+        edge_tractions.at[k][gp][c] = s * n, edge_tractions.at[k][gp][3 + c] = s * m;
+      }
+    }
+}
+
+/// The lifting fluxes F_g, H_g (theory.md §5.4) added to the forces on the element's own edge nodes and written
+/// to the neighbours' edge nodes (zero across an edge that is not lifted).
+KOKKOS_INLINE_FUNCTION void add_lifting_fluxes(const DgElementRef& R, const LiftingWeights& W, const bool lift[3],
+                                               const ResultantMoments& Pi, DgElementForces& out) {
+  for (int k = 0; k < 3; ++k) {
+    EdgeForces& across = out.neighbour[k];
+    for (int j = 0; j < 3; ++j) across.f[j][0] = across.f[j][1] = across.f[j][2] = 0;
+    for (int j = 0; j < 2; ++j) across.g[j][0] = across.g[j][1] = across.g[j][2] = 0;
+    if (!lift[k]) continue;
+    for (int gp = 0; gp < num_edge_points; ++gp) {
+      const EdgePointShapes sh = edge_point_shapes(edge3_rule.s[gp], neighbour_edge_parameter(R.edge[k], gp));
+      const double *no = sh.p2, *nn = sh.p2_other, *lo = sh.p1, *ln = sh.p1_other;
+      for (int c = 0; c < 3; ++c) {
+        double F = 0, H = 0;
+        for (int al = 0; al < 2; ++al) {
+          for (int b = 0; b < 3; ++b) F += Pi.x[al][c][b] * W.Wu[k][gp][al][b];
+          H += Pi.t[al][c] * W.Wt[k][gp][al];
+        }
+        for (int j = 0; j < 3; ++j) {
+          out.f[edge_node(k, j)][c] -= no[j] * F;
+          across.f[j][c] += nn[j] * F;
+        }
+        for (int j = 0; j < 2; ++j) {
+          out.g[edge_node(k, j)][c] -= lo[j] * H;
+          across.g[j][c] += ln[j] * H;
+        }
+      }
+    }
+  }
+}
+
 /// Internal forces of one element (theory.md §5.4) with the point law `law(q, eps, gam, rho, N, Q, M)` at
 /// area point q, returning the stored energy per unit reference area. The law is called exactly once per area
 /// point, in the order q = 0 .. num_area_points - 1.
-///   x[6][3], t[3][3], lift[3], xn, tn: as for dg_kinematics.
-/// Outputs (overwritten): f[6][3] and g[3][3] on the element's own nodes; fn[k][j][3], gn[k][j][3] on the
-/// neighbour's edge nodes (neighbour's edge-local order), zero where lift[k] is false; the edge tractions if
-/// `edge_tractions` is not null (the nucleation check needs them).
+///   e: the element's nodes and its neighbours' edge nodes, as for dg_kinematics.
+/// Outputs (overwritten): the forces on the element's own nodes and the lifting fluxes on the neighbours' edge
+/// nodes (DgElementForces); the edge tractions if `edge_tractions` is not null (the nucleation check needs them).
 /// Returns the element's strain energy sum_q w_q j0_q W.
 template <class Law>
-KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const double x[6][3], const double t[3][3],
-                                                const bool lift[3], const double xn[3][3][3], const double tn[3][2][3],
-                                                const Law& law, double f[6][3], double g[3][3], double fn[3][3][3],
-                                                double gn[3][2][3], EdgeTractions* edge_tractions = nullptr) {
+KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const DgElementNodes& e, const Law& law,
+                                                DgElementForces& out, EdgeTractions* edge_tractions = nullptr) {
   // 1.-2. Liftings of the jumps and DG kinematics at the area points.
   AreaPointShapes S;
   area_point_shapes(S);
@@ -365,13 +445,13 @@ KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const dou
   double P[num_area_points][num_area_points];
   if (R.project_membrane) projection_matrix(R, S, P);
   ShellKinematics kins[num_area_points];
-  dg_kinematics(R, S, W, x, t, lift, xn, tn, kins);
+  dg_kinematics(R, S, W, e, kins);
   // 2'. Area points: strains, resultants, own forces; accumulate the projections Pi.
+  auto& f = out.f;
+  auto& g = out.g;
   for (int A = 0; A < 6; ++A) f[A][0] = f[A][1] = f[A][2] = 0;
   for (int a = 0; a < 3; ++a) g[a][0] = g[a][1] = g[a][2] = 0;
-  double Pix[2][3][3] = {};  // [alpha][component][psi]: sum_q w j0 n^alpha (x) psi
-  double Pit[2][3] = {};     // [alpha][component]:      sum_q w j0 m^alpha
-  double Pim[2][3][3] = {};  // [alpha][component][psi]: sum_q w j0 m^alpha (x) psi (only for edge tractions)
+  ResultantMoments Pi;
   double eps[num_area_points][3], gam[num_area_points][2], rho[num_area_points][3];
   dg_strains(R, P, kins, eps, gam, rho);
   double N[num_area_points][3], Q[num_area_points][2], M[num_area_points][3];
@@ -390,52 +470,16 @@ KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const dou
         const double ma = R.Jinv[q][al][0] * m[0][c] + R.Jinv[q][al][1] * m[1][c];
         for (int A = 0; A < 6; ++A) f[A][c] += w * S.dN[q][A][al] * na;
         for (int a = 0; a < 3; ++a) g[a][c] += w * S.dL[a][al] * ma;
-        for (int b = 0; b < 3; ++b) Pix[al][c][b] += w * na * S.L[q][b];
-        Pit[al][c] += w * ma;
+        for (int b = 0; b < 3; ++b) Pi.x[al][c][b] += w * na * S.L[q][b];
+        Pi.t[al][c] += w * ma;
         if (edge_tractions)
-          for (int b = 0; b < 3; ++b) Pim[al][c][b] += w * ma * S.L[q][b];
+          for (int b = 0; b < 3; ++b) Pi.m[al][c][b] += w * ma * S.L[q][b];
       }
     for (int a = 0; a < 3; ++a)
       for (int c = 0; c < 3; ++c) g[a][c] += w * S.L[q][a] * l[c];
   }
-  // 2''. Edge tractions of the projected resultants: W^u_{g,alpha} = 1/2 omega_g nu_alpha Mpsi^-1 psi(xi_g).
-  if (edge_tractions)
-    for (int k = 0; k < 3; ++k)
-      for (int gp = 0; gp < num_edge_points; ++gp) {
-        const DgEdgeRef& E = R.edge[k];
-        const double s = 2.0 / E.omega[gp];
-        for (int c = 0; c < 3; ++c) {
-          double n = 0, m = 0;
-          for (int al = 0; al < 2; ++al)
-            for (int b = 0; b < 3; ++b) n += Pix[al][c][b] * W.Wu[k][gp][al][b], m += Pim[al][c][b] * W.Wu[k][gp][al][b];
-          edge_tractions->at[k][gp][c] = s * n, edge_tractions->at[k][gp][3 + c] = s * m;
-        }
-      }
-  // 3. Lifting fluxes F_g, H_g on own and neighbour edge nodes (theory.md §5.4).
-  for (int k = 0; k < 3; ++k) {
-    for (int j = 0; j < 3; ++j) fn[k][j][0] = fn[k][j][1] = fn[k][j][2] = 0;
-    for (int j = 0; j < 2; ++j) gn[k][j][0] = gn[k][j][1] = gn[k][j][2] = 0;
-    if (!lift[k]) continue;
-    for (int gp = 0; gp < num_edge_points; ++gp) {
-      const EdgePointShapes sh = edge_point_shapes(edge3_rule.s[gp], neighbour_edge_parameter(R.edge[k], gp));
-      const double *no = sh.p2, *nn = sh.p2_other, *lo = sh.p1, *ln = sh.p1_other;
-      for (int c = 0; c < 3; ++c) {
-        double F = 0, H = 0;
-        for (int al = 0; al < 2; ++al) {
-          for (int b = 0; b < 3; ++b) F += Pix[al][c][b] * W.Wu[k][gp][al][b];
-          H += Pit[al][c] * W.Wt[k][gp][al];
-        }
-        for (int j = 0; j < 3; ++j) {
-          f[edge_node(k, j)][c] -= no[j] * F;
-          fn[k][j][c] += nn[j] * F;
-        }
-        for (int j = 0; j < 2; ++j) {
-          g[edge_node(k, j)][c] -= lo[j] * H;
-          gn[k][j][c] += ln[j] * H;
-        }
-      }
-    }
-  }
+  if (edge_tractions) edge_tractions_of(R, W, Pi, *edge_tractions);  // 2''.
+  add_lifting_fluxes(R, W, e.lift, Pi, out);                           // 3.
   return energy;
 }
 
@@ -462,9 +506,12 @@ KOKKOS_INLINE_FUNCTION void build_dg_interface_ref(const DgEdgeRef& minus_edge, 
 /// nodes of each side in its own edge-local order. Outputs (overwritten) are forces on those nodes.
 /// Returns the stabilization energy U_stab.
 KOKKOS_INLINE_FUNCTION double dg_penalty_forces(const DgInterfaceRef& I, double beta_x, double beta_t,
-                                                const double xm[3][3], const double tm[2][3], const double xp[3][3],
-                                                const double tp[2][3], double fm[3][3], double gm[2][3],
-                                                double fp[3][3], double gp[2][3]) {
+                                                const EdgeNodes& minus, const EdgeNodes& plus, EdgeForces& on_minus,
+                                                EdgeForces& on_plus) {
+  const auto &xm = minus.x, &xp = plus.x;
+  const auto &tm = minus.t, &tp = plus.t;
+  auto &fm = on_minus.f, &fp = on_plus.f;
+  auto &gm = on_minus.g, &gp = on_plus.g;
   for (int j = 0; j < 3; ++j) fm[j][0] = fm[j][1] = fm[j][2] = fp[j][0] = fp[j][1] = fp[j][2] = 0;
   for (int j = 0; j < 2; ++j) gm[j][0] = gm[j][1] = gm[j][2] = gp[j][0] = gp[j][1] = gp[j][2] = 0;
   double energy = 0;

@@ -77,7 +77,7 @@ void set_initial_state(const std::vector<InitialVelocity>& velocities, const Mes
   for (std::size_t k = 0; k < velocities.size(); ++k)
     for (LocalId le = 0; le < model.owned; ++le)
       for (int A = 0; A < 6; ++A) {
-        const LocalId i = le * 6 + A;
+        const LocalId i = le * position_nodes + A;
         if (!members[k][dm.mesh_node(le, A)] || constraints.held(i) || constraints.prescribing(i) >= 0) continue;
         Vec3 vel = initial_velocity(velocities[k], model, s, le, A);
         constraints.position_planes().remove_normal_components(i, vel.data());
@@ -90,7 +90,7 @@ void set_initial_state(const std::vector<InitialVelocity>& velocities, const Mes
     if (w == Vec3{0, 0, 0}) continue;
     for (LocalId le = 0; le < model.owned; ++le)
       for (int b = 0; b < 3; ++b) {
-        if (!members[k][dm.mesh_node(le, b)] || constraints.director_held(le * 3 + b)) continue;
+        if (!members[k][dm.mesh_node(le, b)] || constraints.director_held(le * director_nodes + b)) continue;
         double td[3], L[3][3], T[2];
         disc::cross3(w.data(), s.t.at(le, b), td);
         load_matrix(s.rotation.at(le, b), L);
@@ -99,7 +99,7 @@ void set_initial_state(const std::vector<InitialVelocity>& velocities, const Mes
       }
   }
   // Prescribed motions at t = 0.
-  for (LocalId i = 0; i < model.owned * 6; ++i)
+  for (LocalId i = 0; i < model.owned * position_nodes; ++i)
     if (constraints.prescribing(i) >= 0) {
       const Vec3 pv = constraints.prescribed_velocity(constraints.prescribing(i), 0.0);
       for (int c = 0; c < 3; ++c)

@@ -231,10 +231,13 @@ KOKKOS_INLINE_FUNCTION void add_frame_forces(const disc::DgInterfaceRef& I, int 
 /// and the interpenetration). Not differentiated: the contact's facing weights of the sliding out of the surface
 /// and of the turning. Outputs are overwritten.
 KOKKOS_INLINE_FUNCTION CohesiveInterfaceResult cohesive_interface_forces(
-    const disc::DgInterfaceRef& I, const materials::CohesiveParams& p, const double xm[3][3], const double tm[2][3],
-    const double xp[3][3], const double tp[2][3], const double offset[disc::num_edge_points][6],
-    double delta_max[disc::num_edge_points], double nu[disc::num_edge_points][3], double fm[3][3], double gm[2][3],
-    double fp[3][3], double gp[2][3]) {
+    const disc::DgInterfaceRef& I, const materials::CohesiveParams& p, const disc::EdgeNodes& minus,
+    const disc::EdgeNodes& plus, const double offset[disc::num_edge_points][6], double delta_max[disc::num_edge_points],
+    double nu[disc::num_edge_points][3], disc::EdgeForces& on_minus, disc::EdgeForces& on_plus) {
+  const auto &xm = minus.x, &xp = plus.x;
+  const auto &tm = minus.t, &tp = plus.t;
+  auto &fm = on_minus.f, &fp = on_plus.f;
+  auto &gm = on_minus.g, &gp = on_plus.g;
   for (int j = 0; j < 3; ++j) fm[j][0] = fm[j][1] = fm[j][2] = fp[j][0] = fp[j][1] = fp[j][2] = 0;
   for (int j = 0; j < 2; ++j) gm[j][0] = gm[j][1] = gm[j][2] = gp[j][0] = gp[j][1] = gp[j][2] = 0;
   CohesiveInterfaceResult r;

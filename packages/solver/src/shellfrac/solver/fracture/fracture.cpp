@@ -13,6 +13,7 @@
 #include "shellfrac/materials/elastic_resultant.hpp"
 #include "shellfrac/solver/fracture/cohesive_interface.hpp"
 #include "shellfrac/solver/input/mesh_sets.hpp"
+#include "shellfrac/solver/model/element_inputs.hpp"
 #include "shellfrac/solver/model/element_strains.hpp"
 #include "shellfrac/solver/model/ghost_exchange.hpp"
 #include "shellfrac/solver/model/shell_model.hpp"
@@ -21,9 +22,10 @@ namespace shellfrac::solver {
 
 namespace {
 /// The edge nodes (positions 3, directors 2, edge-local order) of local edge k of overlap element le.
-void edge_nodes(const ShellState& s, LocalId le, int k, double xk[3][3], double tk[2][3]) {
-  for (int j = 0; j < 3; ++j) disc::copy3(s.x.at(le, disc::edge_node(k, j)), xk[j]);
-  for (int j = 0; j < 2; ++j) disc::copy3(s.t.at(le, disc::edge_node(k, j)), tk[j]);
+disc::EdgeNodes edge_nodes(const ShellState& s, LocalId le, int k) {
+  disc::EdgeNodes out;
+  edge_nodes_of(kernel_view(s.x), kernel_view(s.t), le, k, out);
+  return out;
 }
 }  // namespace
 
@@ -107,22 +109,23 @@ void Fracture::nucleate(long step, double t1, ShellState& s, ShellModel& model,
     const auto& em = edge[fc.minus].at[fc.minus_edge];
     const auto& ep = edge[fc.plus].at[fc.plus_edge];
     if (interface_edge_tractions(model.interface_refs[i], cohesive_[i], em, ep, n, m) < 0) continue;  // cheap
-    double xm[3][3], tm[2][3], xq[3][3], tq[2][3], nu[3][3];
-    edge_nodes(s, fc.minus, fc.minus_edge, xm, tm);
-    edge_nodes(s, fc.plus, fc.plus_edge, xq, tq);
-    const double fbar = interface_nucleation(model.interface_refs[i], cohesive_[i], xm, tm, tq, n, m, nu);
+    double nu[3][3];
+    const disc::EdgeNodes minus = edge_nodes(s, fc.minus, fc.minus_edge), plus = edge_nodes(s, fc.plus, fc.plus_edge);
+    const double fbar = interface_nucleation(model.interface_refs[i], cohesive_[i], minus.x, minus.t, plus.t, n, m, nu);
     if (fbar < 0) continue;
-    if (fc.owned) log_activation(i, step, t1, fbar, xm, n, m, nu);
+    if (fc.owned) log_activation(i, step, t1, fbar, minus.x, n, m, nu);
     s.mode[i] = cohesive_[i].Gamma > 0 ? cohesive : separated;
     for (int g = 0; g < 3; ++g) disc::copy3(nu[g], s.conormal.at(i, g));
-    auto* offset = reinterpret_cast<double(*)[6]>(s.activation_offset.at(i));
-    activation_state(model.interface_refs[i], cohesive_[i], xm, tm, xq, tq, n, m, nu, offset, s.delta_max.at(i));
+    double(*offset)[6] = s.activation_offset.points_of(i);
+    activation_state(model.interface_refs[i], cohesive_[i], minus.x, minus.t, plus.x, plus.t, n, m, nu, offset,
+                     s.delta_max.at(i));
     // The law's energy in the same configuration (frozen: its forces are not used here), booked with the
     // penalty energy as the change of the discrete energy at activation.
-    double fm[3][3], gm[2][3], fq[3][3], gq[2][3], nu_now[3][3], dmax[3];
+    double nu_now[3][3], dmax[3];
+    disc::EdgeForces on_minus, on_plus;
     std::copy(nu[0], nu[0] + 9, nu_now[0]), std::copy(s.delta_max.at(i), s.delta_max.at(i) + 3, dmax);
-    const CohesiveInterfaceResult law =
-        cohesive_interface_forces(model.interface_refs[i], cohesive_[i], xm, tm, xq, tq, offset, dmax, nu_now, fm, gm, fq, gq);
+    const CohesiveInterfaceResult law = cohesive_interface_forces(model.interface_refs[i], cohesive_[i], minus, plus,
+                                                                  offset, dmax, nu_now, on_minus, on_plus);
     *s.cohesive_energy.at(i) = law.stored, *s.cohesive_dissipation.at(i) = law.dissipated;
     *s.interface_activation_loss.at(i) += *s.penalty_energy.at(i) - law.stored - law.dissipated;
     *s.penalty_energy.at(i) = 0;

@@ -12,32 +12,42 @@
 
 namespace shellfrac::solver {
 
-/// The neighbour across each edge of every overlap element (entry le * 3 + k: its local id, and its local edge).
+/// The neighbour across each edge of every overlap element: its local id, and its local edge.
 struct NeighborViews {
-  KernelView<const LocalId> element;
-  KernelView<const int> edge;
+  KernelView<const LocalId> element;  ///< entry le * 3 + k
+  KernelView<const int> edge;         ///< entry le * 3 + k
   explicit NeighborViews(const decomposition::DistributedMesh& d)
       : element(kernel_view(d.neighbors())), edge(kernel_view(d.neighbor_edges())) {}
+  /// The element across local edge k of element le, and that element's local edge there.
+  KOKKOS_INLINE_FUNCTION LocalId element_across(LocalId le, int k) const { return element(le * 3 + k); }
+  KOKKOS_INLINE_FUNCTION int edge_across(LocalId le, int k) const { return edge(le * 3 + k); }
 };
 
+/// The nodes of local edge k of element le, in its edge-local order (disc::edge_node).
+KOKKOS_INLINE_FUNCTION void edge_nodes_of(const ConstPositionView& x, const ConstDirectorView& t, LocalId le, int k,
+                                          disc::EdgeNodes& out) {
+  for (int j = 0; j < 3; ++j)
+    for (int c = 0; c < 3; ++c) out.x[j][c] = x(le, disc::edge_node(k, j), c);
+  for (int j = 0; j < 2; ++j)
+    for (int c = 0; c < 3; ++c) out.t[j][c] = t(le, disc::edge_node(k, j), c);
+}
+
 /// The inputs of the element kernel for owned element le (dg_element_forces / dg_kinematics): its nodes, its
-/// lifted edges and, across each lifted edge, the neighbour's edge nodes in the neighbour's edge-local order.
-KOKKOS_INLINE_FUNCTION void element_inputs(const NeighborViews& nb, const KernelView<const double>& xp,
-                                           const KernelView<const double>& tp, const std::array<bool, 3>& lift,
-                                           LocalId le, double xe[6][3], double te[3][3], bool lf[3], double xn[3][3][3],
-                                           double tn[3][2][3]) {
-  constexpr int nx = position_values, nt = director_values;
-  for (int i = 0; i < nx; ++i) xe[i / 3][i % 3] = xp(le * nx + i);
-  for (int i = 0; i < nt; ++i) te[i / 3][i % 3] = tp(le * nt + i);
+/// lifted edges and, across each lifted edge, the neighbour's edge nodes in the neighbour's edge-local order
+/// (zero across an edge that is not lifted).
+KOKKOS_INLINE_FUNCTION void element_inputs(const NeighborViews& nb, const ConstPositionView& x,
+                                           const ConstDirectorView& t, const std::array<bool, 3>& lift, LocalId le,
+                                           disc::DgElementNodes& in) {
+  for (int A = 0; A < position_nodes; ++A)
+    for (int c = 0; c < 3; ++c) in.x[A][c] = x(le, A, c);
+  for (int a = 0; a < director_nodes; ++a)
+    for (int c = 0; c < 3; ++c) in.t[a][c] = t(le, a, c);
   for (int k = 0; k < 3; ++k) {
-    lf[k] = lift[k];
-    if (!lf[k]) continue;
-    const LocalId n = nb.element(le * 3 + k);
-    const int kk = nb.edge(le * 3 + k);
-    for (int j = 0; j < 3; ++j)
-      for (int c = 0; c < 3; ++c) xn[k][j][c] = xp(n * nx + disc::edge_node(kk, j) * 3 + c);
-    for (int j = 0; j < 2; ++j)
-      for (int c = 0; c < 3; ++c) tn[k][j][c] = tp(n * nt + disc::edge_node(kk, j) * 3 + c);
+    in.lift[k] = lift[k];
+    if (lift[k])
+      edge_nodes_of(x, t, nb.element_across(le, k), nb.edge_across(le, k), in.neighbour[k]);
+    else
+      in.neighbour[k] = disc::EdgeNodes{};
   }
 }
 

@@ -8,12 +8,11 @@ namespace shellfrac::solver {
 void element_strains(const ShellModel& model, const ShellState& s, LocalId le,
                      PointStrains out[disc::num_area_points]) {
   constexpr int nq = disc::num_area_points;
-  double xe[6][3], te[3][3], xn[3][3][3] = {}, tn[3][2][3] = {};
-  bool lf[3];
-  element_inputs(NeighborViews(model.dm), kernel_view(s.x), kernel_view(s.t), model.lifted[le], le, xe, te, lf, xn, tn);
+  disc::DgElementNodes in;
+  element_inputs(NeighborViews(model.dm), kernel_view(s.x), kernel_view(s.t), model.lifted[le], le, in);
   disc::ShellKinematics kin[nq];
   const disc::DgElementRef& R = model.element_refs[le];
-  disc::dg_kinematics(R, xe, te, lf, xn, tn, kin);
+  disc::dg_kinematics(R, in, kin);
   double eps[nq][3], gam[nq][2], rho[nq][3];
   disc::dg_strains(R, kin, eps, gam, rho);
   for (int q = 0; q < nq; ++q) {

@@ -84,8 +84,8 @@ struct ShellModel {
   std::vector<materials::PlasticSection> block_plastic;  ///< used where block_is_plastic
   std::vector<char> block_is_plastic;        ///< the block's material is Resultant Plasticity
   bool any_plastic = false;                  ///< some element of the mesh is plastic (the same on every rank)
-  Rows<position_nodes, 1> mass;              ///< HRZ lumped mass per position node (owned)
-  Rows<director_nodes, 1> inertia;           ///< lumped rotary inertia per director node (owned)
+  PositionNodeScalars mass;                  ///< HRZ lumped mass per position node (owned)
+  DirectorNodeScalars inertia;               ///< lumped rotary inertia per director node (owned)
   double stable_dt = 0;                      ///< 2 / max omega over every element (before the safety factor)
   MassScaling mass_scaling;                  ///< what Target Time Step added (nothing without it)
   TimeStepSurvey time_step_survey;           ///< the smallest and the median element step (before scaling)

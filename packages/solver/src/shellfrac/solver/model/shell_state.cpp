@@ -5,8 +5,8 @@
 namespace shellfrac::solver {
 
 namespace {
-template <int P, int V>
-double field_bytes(const Rows<P, V>& f) {
+template <class O, int P, int V>
+double field_bytes(const Rows<O, P, V>& f) {
   return sizeof(double) * double(f.size());
 }
 double field_bytes(const std::vector<int>& f) { return sizeof(int) * double(f.size()); }

@@ -13,17 +13,26 @@
 
 namespace shellfrac::solver {
 
-/// Rows of Points x Values doubles: row r (an element or an interface), point p (a node or an edge point) holds
-/// Values doubles at (r * Points + p) * Values. Point index i = r * Points + p addresses one point directly.
-template <int Points, int Values>
+/// What the rows of a row array are: one per element (owned, or the overlap with the ghost layer) or one per
+/// interface (the local interfaces of docs/parallel.md).
+struct PerElement {};
+struct PerInterface {};
+
+/// Rows of Points x Values doubles: row r (an element or an interface, as Over says), point p (a node, an edge or
+/// an edge point) holds Values doubles at (r * Points + p) * Values. Point index i = r * Points + p addresses one
+/// point directly.
+template <class Over, int Points, int Values>
 class Rows {
  public:
+  using over = Over;
   static constexpr int points = Points, values = Values, width = Points * Values;
   void assign(LocalId rows, double value = 0.0) { v_.assign(std::size_t(rows) * width, value); }
   LocalId rows() const { return static_cast<LocalId>(v_.size() / width); }
   /// The values of point p of row r.
   double* at(LocalId r, int p = 0) { return v_.data() + (std::size_t(r) * Points + p) * Values; }
   const double* at(LocalId r, int p = 0) const { return v_.data() + (std::size_t(r) * Points + p) * Values; }
+  /// Row r as Points points of Values values (an argument `double values[][Values]` of a point-wise function).
+  double (*points_of(LocalId r))[Values] { return reinterpret_cast<double(*)[Values]>(at(r)); }
   /// The values of point i = r * Points + p.
   double* point(LocalId i) { return v_.data() + std::size_t(i) * Values; }
   const double* point(LocalId i) const { return v_.data() + std::size_t(i) * Values; }
@@ -37,13 +46,22 @@ class Rows {
   std::vector<double> v_;
 };
 
+template <int Points, int Values>
+using ElementRows = Rows<PerElement, Points, Values>;
+template <int Points, int Values>
+using InterfaceRows = Rows<PerInterface, Points, Values>;
+
 constexpr int position_nodes = 6;  ///< P2 positions: 3 vertices, then the mid-sides of edges 1-2, 2-3, 3-1
 constexpr int director_nodes = 3;  ///< P1 directors: the vertices
-using PositionRows = Rows<position_nodes, 3>;  ///< a 3-vector per position node (positions, velocities, forces)
-using DirectorRows = Rows<director_nodes, 3>;  ///< a 3-vector per director node (directors, director forces)
-using RotationRows = Rows<director_nodes, 9>;  ///< the rotation Lambda per director node, row-major 3 x 3
-using RateRows = Rows<director_nodes, 2>;      ///< the two material components of a director rate per director node
-using Scalars = Rows<1, 1>;                    ///< one value per row
+constexpr int edge_points = 3;     ///< the edge points of an interface (disc::num_edge_points)
+using PositionRows = ElementRows<position_nodes, 3>;  ///< a 3-vector per position node (positions, velocities, forces)
+using DirectorRows = ElementRows<director_nodes, 3>;  ///< a 3-vector per director node (directors, director forces)
+using RotationRows = ElementRows<director_nodes, 9>;  ///< the rotation Lambda per director node, row-major 3 x 3
+using RateRows = ElementRows<director_nodes, 2>;  ///< the two material components of a director rate per director node
+using PositionNodeScalars = ElementRows<position_nodes, 1>;  ///< a value per position node (the lumped mass)
+using DirectorNodeScalars = ElementRows<director_nodes, 1>;  ///< a value per director node (the rotary inertia)
+using Scalars = ElementRows<1, 1>;                            ///< one value per element
+using InterfaceScalars = InterfaceRows<1, 1>;                 ///< one value per interface
 constexpr int position_values = PositionRows::width;  ///< 18
 constexpr int director_values = DirectorRows::width;  ///< 9
 
@@ -111,12 +129,13 @@ struct ShellState {
   std::vector<materials::PlasticState> plastic;
   // Interface rows.
   std::vector<int> mode;         ///< InterfaceMode
-  Rows<3, 1> delta_max;          ///< largest effective opening reached at each edge point (docs/theory.md §9.2)
-  Rows<3, 3> conormal;           ///< last current co-normal at each edge point (docs/theory.md §9.1)
-  Rows<3, 6> activation_offset;    ///< jumps less the law's opening at activation, in the interface frame (theory.md §9.6)
-  Scalars cohesive_energy, cohesive_dissipation;  ///< stored and dissipated cohesive energy
-  Scalars interface_activation_loss;  ///< penalty energy released at activation
-  Scalars penalty_energy;        ///< U_stab of an intact interface
+  InterfaceRows<edge_points, 1> delta_max;  ///< largest effective opening reached at each edge point (theory.md §9.2)
+  InterfaceRows<edge_points, 3> conormal;   ///< last current co-normal at each edge point (docs/theory.md §9.1)
+  /// Jumps less the law's opening at activation at each edge point, in the interface frame (theory.md §9.6).
+  InterfaceRows<edge_points, 6> activation_offset;
+  InterfaceScalars cohesive_energy, cohesive_dissipation;  ///< stored and dissipated cohesive energy
+  InterfaceScalars interface_activation_loss;  ///< penalty energy released at activation
+  InterfaceScalars penalty_energy;             ///< U_stab of an intact interface
   /// The rigid bodies, in deck order (none without Contact->Rigid Bodies).
   std::vector<RigidBodyState> bodies;
 

@@ -19,21 +19,21 @@ namespace {
 constexpr int nq = disc::num_area_points;
 
 /// Width of a field in a checkpoint row.
-template <int P, int V>
-int field_width(const Rows<P, V>&) {
-  return Rows<P, V>::width;
+template <class O, int P, int V>
+int field_width(const Rows<O, P, V>&) {
+  return Rows<O, P, V>::width;
 }
 int field_width(const std::vector<int>&) { return 1; }
 
 /// Copies row r of a field to `out` (advancing it), and reads it back from `in` (advancing it).
-template <int P, int V>
-void copy_row(const Rows<P, V>& f, LocalId r, double*& out) {
-  out = std::copy(f.at(r), f.at(r) + Rows<P, V>::width, out);
+template <class O, int P, int V>
+void copy_row(const Rows<O, P, V>& f, LocalId r, double*& out) {
+  out = std::copy(f.at(r), f.at(r) + Rows<O, P, V>::width, out);
 }
 void copy_row(const std::vector<int>& f, LocalId r, double*& out) { *out++ = double(f[r]); }
-template <int P, int V>
-void read_row(Rows<P, V>& f, LocalId r, const double*& in) {
-  std::copy(in, in + Rows<P, V>::width, f.at(r)), in += Rows<P, V>::width;
+template <class O, int P, int V>
+void read_row(Rows<O, P, V>& f, LocalId r, const double*& in) {
+  std::copy(in, in + Rows<O, P, V>::width, f.at(r)), in += Rows<O, P, V>::width;
 }
 void read_row(std::vector<int>& f, LocalId r, const double*& in) { f[r] = int(*in++); }
 

@@ -37,6 +37,7 @@ struct ConstraintViews {
   KernelView<const Plane> planes;
   KernelView<const DirectorConstraint> director_constraints;
   KernelView<const double> program;
+  ConstraintViews() = default;
   ConstraintViews(const Constraints& c, const std::vector<double>& programs)
       : motion(kernel_view(c.motions())),
         components(kernel_view(c.prescribed_components())),
@@ -69,18 +70,25 @@ struct ConstraintViews {
 /// and prescribed components, and the damping dissipated over dt.
 struct Accelerate {
   ConstraintViews con;  // programs: the accelerations at t
-  KernelView<const double> v, f, fe, m, g, ge, rotation, director, inertia, rate;
-  KernelView<double> a, reaction, director_acceleration, damping;
-  double alpha, dt;
-  bool director_loads;
+  ConstPositionView v, f, fe;                    // velocities, internal and external forces
+  ConstViewOf<PositionNodeScalars> m;            // lumped masses
+  ConstDirectorView g, ge, director;             // internal and external director forces, directors
+  ConstViewOf<RotationRows> rotation;
+  ConstViewOf<DirectorNodeScalars> inertia;
+  ConstViewOf<RateRows> rate;                    // the director rate in the damping force
+  PositionView a, reaction;
+  ViewOf<RateRows> director_acceleration;
+  ViewOf<Scalars> damping;                       // the damping dissipation of each element
+  double alpha = 0, dt = 0;
+  bool director_loads = false;
 
   KOKKOS_INLINE_FUNCTION void operator()(LocalId le) const {
     double diss = 0;
     for (int A = 0; A < position_nodes; ++A) {
       const LocalId i = le * position_nodes + A;
-      double* acc = &a(i * 3);
-      double* R = &reaction(i * 3);
-      const double *vi = &v(i * 3), *fi = &f(i * 3), *fei = &fe(i * 3);
+      double* acc = a.point(i);
+      double* R = reaction.point(i);
+      const double *vi = v.point(i), *fi = f.point(i), *fei = fe.point(i);
       const double mi = m(i);
       const Motion motion = con.motion(i);
       if (motion == Motion::held) {
@@ -107,23 +115,23 @@ struct Accelerate {
     for (int b = 0; b < director_nodes; ++b) {
       const LocalId j = le * director_nodes + b;
       double L[3][3], fT[2];
-      load_matrix(&rotation(j * 9), L);
+      load_matrix(rotation.point(j), L);
       if (director_loads) {  // f_T = Lambda-bar^T (g - g_ext)
         double gj[3];
-        for (int c = 0; c < 3; ++c) gj[c] = g(j * 3 + c) - ge(j * 3 + c);
+        for (int c = 0; c < 3; ++c) gj[c] = g.point(j)[c] - ge.point(j)[c];
         disc::lambda_bar_transpose_times(L, gj, fT);
       } else {
-        disc::lambda_bar_transpose_times(L, &g(j * 3), fT);
+        disc::lambda_bar_transpose_times(L, g.point(j), fT);
       }
       const double I = inertia(j);
-      const double* Tp = &rate(j * 2);
+      const double* Tp = rate.point(j);
       for (int c = 0; c < 2; ++c) {
         diss += dt * alpha * I * Tp[c] * Tp[c];
         fT[c] += alpha * I * Tp[c];
       }
-      con.remove_forbidden(j, L, &director(j * 3), fT);
+      con.remove_forbidden(j, L, director.point(j), fT);
       const bool held = con.director_held(j);
-      for (int c = 0; c < 2; ++c) director_acceleration(j * 2 + c) = held ? 0.0 : -fT[c] / I;
+      for (int c = 0; c < 2; ++c) director_acceleration.point(j)[c] = held ? 0.0 : -fT[c] / I;
     }
     damping(le) += diss;
   }
@@ -145,24 +153,17 @@ Accelerate accelerations(const ShellModel& model, const Constraints& constraints
                          ShellState& s, double t, double dt, const RateRows& director_rate,
                          std::vector<double>& programs) {
   evaluate_programs(constraints, t, &Constraints::prescribed_acceleration, programs);
-  return Accelerate{ConstraintViews(constraints, programs),
-                    kernel_view(std::as_const(s.v)),
-                    kernel_view(std::as_const(s.internal_force)),
-                    kernel_view(std::as_const(s.external_force)),
-                    kernel_view(model.mass),
-                    kernel_view(std::as_const(s.director_force)),
-                    kernel_view(std::as_const(s.external_director_force)),
-                    kernel_view(std::as_const(s.rotation)),
-                    kernel_view(std::as_const(s.t)),
-                    kernel_view(model.inertia),
-                    kernel_view(director_rate),
-                    kernel_view(s.a),
-                    kernel_view(s.reaction),
-                    kernel_view(s.director_acceleration),
-                    kernel_view(s.damping_dissipation),
-                    alpha,
-                    dt,
-                    director_loads};
+  Accelerate k;
+  k.con = ConstraintViews(constraints, programs);
+  k.v = kernel_view(std::as_const(s.v)), k.f = kernel_view(std::as_const(s.internal_force));
+  k.fe = kernel_view(std::as_const(s.external_force)), k.m = kernel_view(model.mass);
+  k.g = kernel_view(std::as_const(s.director_force)), k.ge = kernel_view(std::as_const(s.external_director_force));
+  k.director = kernel_view(std::as_const(s.t)), k.rotation = kernel_view(std::as_const(s.rotation));
+  k.inertia = kernel_view(model.inertia), k.rate = kernel_view(director_rate);
+  k.a = kernel_view(s.a), k.reaction = kernel_view(s.reaction);
+  k.director_acceleration = kernel_view(s.director_acceleration), k.damping = kernel_view(s.damping_dissipation);
+  k.alpha = alpha, k.dt = dt, k.director_loads = director_loads;
+  return k;
 }
 
 }  // namespace
@@ -333,13 +334,13 @@ void CentralDifference::remember_step_start(const ShellState& s) {
 void CentralDifference::predict(ShellState& s, double dt, double t1) {
   evaluate_programs(constraints_, t1, &Constraints::prescribed_displacement, programs_u_);
   const ConstraintViews con(constraints_, programs_u_);
-  const KernelView<double> x = kernel_view(s.x), v = kernel_view(s.v);
-  const KernelView<const double> a = kernel_view(std::as_const(s.a)), X = kernel_view(model_.X);
+  const PositionView x = kernel_view(s.x), v = kernel_view(s.v);
+  const ConstPositionView a = kernel_view(std::as_const(s.a)), X = kernel_view(model_.X);
   Kokkos::parallel_for("shellfrac::PredictPositions", KernelRange(0, model_.owned * position_nodes), [=](const LocalId i) {
-    double* xi = &x(i * 3);
-    double* vi = &v(i * 3);
-    const double* ai = &a(i * 3);
-    const double* Xi = &X(i * 3);
+    double* xi = x.point(i);
+    double* vi = v.point(i);
+    const double* ai = a.point(i);
+    const double* Xi = X.point(i);
     const Motion motion = con.motion(i);
     if (motion == Motion::held) {
       for (int c = 0; c < 3; ++c) xi[c] = Xi[c], vi[c] = 0;
@@ -362,24 +363,26 @@ void CentralDifference::predict(ShellState& s, double dt, double t1) {
     }
     for (int c = 0; c < 3; ++c) xi[c] += dx[c];
   });
-  const KernelView<double> t = kernel_view(s.t), rotation = kernel_view(s.rotation);
-  const KernelView<const double> Td = kernel_view(std::as_const(s.director_rate));
-  const KernelView<const double> Tdd = kernel_view(std::as_const(s.director_acceleration));
-  const KernelView<double> Tp = kernel_view(director_rate_predicted_);
+  const DirectorView t = kernel_view(s.t);
+  const ViewOf<RotationRows> rotation = kernel_view(s.rotation);
+  const ConstViewOf<RateRows> Td = kernel_view(std::as_const(s.director_rate));
+  const ConstViewOf<RateRows> Tdd = kernel_view(std::as_const(s.director_acceleration));
+  const ViewOf<RateRows> Tp = kernel_view(director_rate_predicted_);
   Kokkos::parallel_for("shellfrac::PredictDirectors", KernelRange(0, model_.owned * director_nodes), [=](const LocalId j) {
     double L[3][3], dT[2];
-    load_matrix(&rotation(j * 9), L);
+    load_matrix(rotation.point(j), L);
     const bool held = con.director_held(j);
-    double* Tpj = &Tp(j * 2);
+    double* Tpj = Tp.point(j);
+    const double *Tdj = Td.point(j), *Tddj = Tdd.point(j);
     for (int c = 0; c < 2; ++c) {
-      dT[c] = held ? 0.0 : dt * Td(j * 2 + c) + 0.5 * dt * dt * Tdd(j * 2 + c);  // paper eq. 47
-      Tpj[c] = held ? 0.0 : Td(j * 2 + c) + 0.5 * dt * Tdd(j * 2 + c);         // paper eq. 48, gamma = 1/2
+      dT[c] = held ? 0.0 : dt * Tdj[c] + 0.5 * dt * dt * Tddj[c];  // paper eq. 47
+      Tpj[c] = held ? 0.0 : Tdj[c] + 0.5 * dt * Tddj[c];           // paper eq. 48, gamma = 1/2
     }
-    double* tj = &t(j * 3);
+    double* tj = t.point(j);
     con.remove_forbidden(j, L, tj, dT);
     con.remove_forbidden(j, L, tj, Tpj);
     disc::update_director(tj, L, dT, tj, L);  // Algorithm 1
-    store_matrix(L, &rotation(j * 9));
+    store_matrix(L, rotation.point(j));
   });
 }
 
@@ -412,26 +415,28 @@ void CentralDifference::correct(ShellState& s, double dt, double t1) {
                                               director_rate_predicted_, programs_a_);
   evaluate_programs(constraints_, t1, &Constraints::prescribed_velocity, programs_v_);
   const ConstraintViews con(constraints_, programs_v_);
-  const KernelView<double> v = kernel_view(s.v), rate = kernel_view(s.director_rate);
-  const KernelView<const double> a = kernel_view(std::as_const(s.a));
-  const KernelView<const double> Tdd = kernel_view(std::as_const(s.director_acceleration));
-  const KernelView<const double> Tp = kernel_view(std::as_const(director_rate_predicted_));
-  const KernelView<const double> x = kernel_view(std::as_const(s.x)), x0 = kernel_view(std::as_const(x_start_));
-  const KernelView<const double> fe = kernel_view(std::as_const(s.external_force)), fe0 = kernel_view(std::as_const(fext_start_));
+  const PositionView v = kernel_view(s.v);
+  const ViewOf<RateRows> rate = kernel_view(s.director_rate);
+  const ConstPositionView a = kernel_view(std::as_const(s.a));
+  const ConstViewOf<RateRows> Tdd = kernel_view(std::as_const(s.director_acceleration));
+  const ConstViewOf<RateRows> Tp = kernel_view(std::as_const(director_rate_predicted_));
+  const ConstPositionView x = kernel_view(std::as_const(s.x)), x0 = kernel_view(std::as_const(x_start_));
+  // fe0: the external forces at t_n of the loaded elements only, row fe0_slot(le) (-1: none)
+  const ConstPositionView fe = kernel_view(std::as_const(s.external_force)), fe0 = kernel_view(std::as_const(fext_start_));
   const KernelView<const int> fe0_slot = kernel_view(std::as_const(fext_start_slot_));
-  const KernelView<const double> R = kernel_view(std::as_const(s.reaction));
-  const KernelView<const double> t = kernel_view(std::as_const(s.t)), t0 = kernel_view(std::as_const(t_start_));
-  const KernelView<const double> ge = kernel_view(std::as_const(s.external_director_force));
-  const KernelView<const double> ge0 = kernel_view(std::as_const(gext_start_));
-  const KernelView<double> external_work = kernel_view(s.external_work), reaction_work = kernel_view(s.reaction_work);
+  const ConstPositionView R = kernel_view(std::as_const(s.reaction));
+  const ConstDirectorView t = kernel_view(std::as_const(s.t)), t0 = kernel_view(std::as_const(t_start_));
+  const ConstDirectorView ge = kernel_view(std::as_const(s.external_director_force));
+  const ConstDirectorView ge0 = kernel_view(std::as_const(gext_start_));
+  const ViewOf<Scalars> external_work = kernel_view(s.external_work), reaction_work = kernel_view(s.reaction_work);
   const bool director_loads = loads_.has_director_loads();
   Kokkos::parallel_for("shellfrac::Correct", KernelRange(0, model_.owned), [=](const LocalId le) {
     double R0[position_values];  // the reactions at t_n, before accelerate overwrites them
-    for (int k = 0; k < position_values; ++k) R0[k] = R(le * position_values + k);
+    for (int k = 0; k < position_values; ++k) R0[k] = R.at(le)[k];
     accelerate(le);
     for (LocalId i = le * position_nodes; i < (le + 1) * position_nodes; ++i) {
-      double* vi = &v(i * 3);
-      const double* ai = &a(i * 3);
+      double* vi = v.point(i);
+      const double* ai = a.point(i);
       const Motion motion = con.motion(i);
       if (motion == Motion::held) continue;
       if (motion == Motion::prescribed) {
@@ -441,18 +446,19 @@ void CentralDifference::correct(ShellState& s, double dt, double t1) {
       for (int c = 0; c < 3; ++c) vi[c] += 0.5 * dt * ai[c];
     }
     for (LocalId j = le * director_nodes; j < (le + 1) * director_nodes; ++j)
-      for (int c = 0; c < 2; ++c) rate(j * 2 + c) = Tp(j * 2 + c) + 0.5 * dt * Tdd(j * 2 + c);
+      for (int c = 0; c < 2; ++c) rate.point(j)[c] = Tp.point(j)[c] + 0.5 * dt * Tdd.point(j)[c];
     double wext = 0, wreact = 0;
-    const double* f0 = fe0_slot(le) >= 0 ? &fe0(fe0_slot(le) * position_values) : nullptr;
+    const double* f0 = fe0_slot(le) >= 0 ? fe0.at(fe0_slot(le)) : nullptr;
+    const double *xe = x.at(le), *x0e = x0.at(le), *fee = fe.at(le), *Re = R.at(le);
     for (int j = 0; j < position_values; ++j) {
-      const LocalId k = le * position_values + j;
-      const double dx = x(k) - x0(k);
-      wext += 0.5 * ((f0 ? f0[j] : 0.0) + fe(k)) * dx;
-      wreact += 0.5 * (R0[j] + R(k)) * dx;
+      const double dx = xe[j] - x0e[j];
+      wext += 0.5 * ((f0 ? f0[j] : 0.0) + fee[j]) * dx;
+      wreact += 0.5 * (R0[j] + Re[j]) * dx;
     }
-    if (director_loads)  // the work of the edge couples on the directors
-      for (LocalId k = le * director_values; k < (le + 1) * director_values; ++k)
-        wext += 0.5 * (ge0(k) + ge(k)) * (t(k) - t0(k));
+    if (director_loads) {  // the work of the edge couples on the directors
+      const double *te = t.at(le), *t0e = t0.at(le), *gee = ge.at(le), *ge0e = ge0.at(le);
+      for (int j = 0; j < director_values; ++j) wext += 0.5 * (ge0e[j] + gee[j]) * (te[j] - t0e[j]);
+    }
     external_work(le) += wext, reaction_work(le) += wreact;
   });
 }

@@ -73,11 +73,11 @@ Constraints::Constraints(const std::vector<BoundaryCondition>& conditions, const
     : dm_(dm), conditions_(conditions) {
   const LocalId no = dm.num_owned();
   SHELLFRAC_INPUT_REQUIRE(conditions_.size() <= 32, deck_file << ": at most 32 boundary conditions");
-  held_by_.assign(no * 6, -1), prescribing_.assign(no * 6, -1), director_held_by_.assign(no * 3, -1);
-  acts_on_.assign(no * 6, 0);
-  std::vector<int> rotating(no * 3, -1);
-  std::vector<std::vector<Plane>> planes_x(no * 6);
-  std::vector<std::vector<DirectorConstraint>> planes_t(no * 3);
+  held_by_.assign(no * position_nodes, -1), prescribing_.assign(no * position_nodes, -1), director_held_by_.assign(no * director_nodes, -1);
+  acts_on_.assign(no * position_nodes, 0);
+  std::vector<int> rotating(no * director_nodes, -1);
+  std::vector<std::vector<Plane>> planes_x(no * position_nodes);
+  std::vector<std::vector<DirectorConstraint>> planes_t(no * director_nodes);
   using T = BoundaryCondition::Type;
   for (std::size_t ib = 0; ib < conditions_.size(); ++ib) {
     const auto& bc = conditions_[ib];
@@ -94,7 +94,7 @@ Constraints::Constraints(const std::vector<BoundaryCondition>& conditions, const
     for (LocalId le = 0; le < no; ++le)
       for (int A = 0; A < 6; ++A) {
         if (!member[dm.mesh_node(le, A)] || !in_elements[dm.element_gid(le)]) continue;
-        const LocalId i = le * 6 + A, j = le * 3 + A;  // j: the director node, for vertices (A < 3)
+        const LocalId i = le * position_nodes + A, j = le * director_nodes + A;  // j: the director node, for vertices (A < 3)
         acts_on_[i] |= 1u << ib;
         const bool holds_position = bc.type == T::Clamped || bc.type == T::SimplySupported;
         if (holds_position && held_by_[i] < 0) held_by_[i] = b;
@@ -115,8 +115,8 @@ Constraints::Constraints(const std::vector<BoundaryCondition>& conditions, const
   }
   // A held node is held whatever else acts on it; a prescribed one ignores symmetry planes; a director held by
   // another condition is not rotated.
-  prescribed_components_.assign(no * 6, 0), motion_.assign(no * 6, Motion::free);
-  for (LocalId i = 0; i < no * 6; ++i) {
+  prescribed_components_.assign(no * position_nodes, 0), motion_.assign(no * position_nodes, Motion::free);
+  for (LocalId i = 0; i < no * position_nodes; ++i) {
     if (held_by_[i] >= 0) prescribing_[i] = -1;
     if (held_by_[i] >= 0 || prescribing_[i] >= 0) planes_x[i].clear();
     if (prescribing_[i] >= 0)
@@ -126,7 +126,7 @@ Constraints::Constraints(const std::vector<BoundaryCondition>& conditions, const
                  : !planes_x[i].empty()  ? Motion::on_planes
                                          : Motion::free;
   }
-  for (LocalId j = 0; j < no * 3; ++j) {
+  for (LocalId j = 0; j < no * director_nodes; ++j) {
     if (director_held_by_[j] < 0 && rotating[j] >= 0) {
       director_held_by_[j] = rotating[j];
       rotated_.push_back(RotatedNode{j / 3, int(j % 3), rotating[j], {}, {}, {}, {}, {}});
@@ -152,9 +152,9 @@ void Constraints::refuse_overridden_programs(const std::string& deck_file) const
     int taker = static_cast<int>(conditions_.size());
     for (LocalId le = 0; le < dm_.num_owned(); ++le)
       for (int A = 0; A < (velocity ? 6 : 3); ++A) {
-        const LocalId i = le * 6 + A;
+        const LocalId i = le * position_nodes + A;
         if (!(acts_on_[i] & (1u << ib))) continue;
-        const int by = velocity ? (held_by_[i] >= 0 ? held_by_[i] : prescribing_[i]) : director_held_by_[le * 3 + A];
+        const int by = velocity ? (held_by_[i] >= 0 ? held_by_[i] : prescribing_[i]) : director_held_by_[le * director_nodes + A];
         ++acting;
         if (by == b)
           ++effective;
@@ -235,7 +235,7 @@ void Constraints::reaction_contributions(const ShellState& s, std::size_t bc, Co
   force = {}, couple = {};
   for (LocalId le = 0; le < dm_.num_owned(); ++le)
     for (int A = 0; A < 6; ++A) {
-      const LocalId i = le * 6 + A;
+      const LocalId i = le * position_nodes + A;
       if (!(acts_on_[i] & (1u << bc))) continue;
       const bool holder = held_by_[i] == b || prescribing_[i] == b;  // the node's reaction is this condition's
       const double* R = s.reaction.point(i);
@@ -256,7 +256,7 @@ void Constraints::reaction_contributions(const ShellState& s, std::size_t bc, Co
   // support; the virtual work g . (dtheta x t) = dtheta . (t x g)).
   for (LocalId le = 0; le < dm_.num_owned(); ++le)
     for (int a = 0; a < 3; ++a) {
-      if (director_held_by_[le * 3 + a] != b) continue;
+      if (director_held_by_[le * director_nodes + a] != b) continue;
       double m[3];
       disc::cross3(s.t.at(le, a), s.director_force.at(le, a), m);
       for (int c = 0; c < 3; ++c) couple.values[c].push_back(m[c]);

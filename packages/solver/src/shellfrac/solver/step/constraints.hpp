@@ -141,7 +141,7 @@ class Constraints {
   Constraints(const std::vector<BoundaryCondition>& conditions, const MeshSets& sets,
               const decomposition::DistributedMesh& dm, const std::string& deck_file);
 
-  /// How position node i = le * 6 + A of an owned element moves: freely, freely but on symmetry planes, with some
+  /// How position node i = le * position_nodes + A of an owned element moves: freely, freely but on symmetry planes, with some
   /// components prescribed, or not at all.
   enum class Motion : unsigned char { free, on_planes, prescribed, held };
   Motion motion(LocalId i) const { return motion_[i]; }
@@ -153,7 +153,7 @@ class Constraints {
   /// Whether node i moves freely in component c (not held, not prescribed in c).
   bool free(LocalId i, int c) const { return !held(i) && !prescribed(i, c); }
   const PlaneLists& position_planes() const { return position_planes_; }
-  // Director node j = le * 3 + b of an owned element.
+  // Director node j = le * director_nodes + b of an owned element.
   bool director_held(LocalId j) const { return director_held_by_[j] >= 0; }
   const DirectorConstraintLists& director_constraints() const { return director_constraints_; }
   /// The per-node arrays behind the queries above (owned position nodes; owned director nodes), for kernels.

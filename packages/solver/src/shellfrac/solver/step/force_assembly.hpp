@@ -24,6 +24,16 @@ namespace shellfrac::solver {
 
 struct ShellModel;
 
+/// The lifting fluxes an element writes for its neighbours: across each local edge k, the forces on the
+/// neighbour's edge nodes (in the neighbour's edge-local order).
+struct LiftingFluxes {
+  disc::EdgeForces across[3];
+};
+
+/// The forces of an interface on the edge nodes of its two sides (0: minus, 1: plus), each in its edge-local order.
+struct InterfaceForces {
+  disc::EdgeForces side[2];
+};
 
 class ForceAssembly {
  public:
@@ -55,9 +65,9 @@ class ForceAssembly {
 
   const ShellModel& model_;
   PhaseTimes& times_;
-  Rows<3, 15> flux_;  ///< overlap: per local edge, the lifting flux on the neighbour's 3 position + 2 director nodes
+  std::vector<LiftingFluxes> flux_;                  ///< overlap
   std::vector<disc::EdgeTractions> edge_tractions_;  ///< overlap (fracture runs)
-  Rows<2, 15> interface_force_;  ///< per local interface and side: forces on the side's 3 position + 2 director nodes
+  std::vector<InterfaceForces> interface_force_;     ///< per local interface
   std::vector<double> plastic_work_increment_;
   std::vector<int> return_failed_;
   GhostExchange exchange_;
