@@ -486,26 +486,14 @@ struct CantileverResult {
   int n, bandwidth, colors;
 };
 
-/// Linearized clamped-free strip [0, L] x [0, b], nx x ny cells (alternating diagonals), nu = 0, tip load P
-/// (z) at x = L as consistent nodal loads on the end edges; all DG copies of the nodes at x = 0 clamped
-/// (positions and directors).
-CantileverResult solve_cantilever(int nx, int ny, double h) {
-  const double L = 1.0, b = 0.1, E = 1.0e3, nu = 0.0, P = 1.0;
-  auto mesh = mesh::make_rectangle(L, b, nx, ny, mesh::DiagonalPattern::Alternating);
-  mesh::promote_to_p2(mesh);
-  Model model(mesh, E, nu, h);
-  LinearizedModel lin(model);
-  CantileverResult res{};
-  res.n = lin.n, res.bandwidth = lin.bandwidth, res.colors = lin.num_colors;
-  // FD steps. In-plane position columns: 1e-7 (L = 1) balances round-off (the membrane strain 1/2 (a.a - 1)
-  // of O(1) vectors loses 1e-16 absolute, i.e. 1e-16/step relative) and truncation (cubic force terms,
-  // Dn (step/l_E)^2 relative). Out-of-plane columns (z positions, director rotations): their forces carry no
-  // O(1) cancellation, and the only nonlinearity is the membrane strain a_z^2/2, whose central-difference
-  // error is a spurious geometric stiffness ~ Dn (step/l_E)^2 ~ Dn 1e-11 for a step of 1e-7 -- already 1e-3
-  // of the bending stiffness Dm ~ Dn h^2/12 at h = 1e-3 (seen as K u != FD(u) at the 2.5e-3 level). A step
-  // of 1e-10 makes it 1e-17 Dn; the director block is exactly quadratic (any step).
-  BandMatrix K = lin.stiffness(1e-7, 1e-10, res.asym, res.leak);
-  // Loads and constraints.
+/// The tip load P (z) at x = L as consistent nodal loads on the end edges, and the clamped DOFs.
+struct CantileverLoads {
+  std::vector<double> f;    ///< generalized nodal loads
+  std::vector<char> fixed;  ///< 1 for the DOFs of all DG copies of the nodes at x = 0 (positions and directors)
+};
+
+/// Loads and constraints of the strip [0, L] x [0, b] under the tip shear P.
+CantileverLoads cantilever_loads(const Model& model, const LinearizedModel& lin, double L, double b, double P) {
   const int n = lin.n;
   std::vector<double> f(n, 0.0);
   std::vector<char> fixed(n, 0);
@@ -531,6 +519,13 @@ CantileverResult solve_cantilever(int nx, int ny, double h) {
   double ftot = 0;
   for (double v : f) ftot += v;
   EXPECT_NEAR(ftot, P, 1e-14);
+  return {f, fixed};
+}
+
+/// Solves K u = f with the clamped DOFs eliminated; `solve_residual` is the normwise backward error of the solve.
+std::vector<double> solve_clamped(const BandMatrix& K, const std::vector<double>& f, const std::vector<char>& fixed,
+                                  double& solve_residual) {
+  const int n = K.n;
   // Eliminate the clamped DOFs (identity rows/columns, zero load), factor, solve, one refinement step.
   BandMatrix Kc = K;
   for (int i = 0; i < n; ++i)
@@ -556,28 +551,38 @@ CantileverResult solve_cantilever(int nx, int ny, double h) {
       for (int j = std::max(0, i - Kc0.bw); j <= std::min(n - 1, i + Kc0.bw); ++j) row += std::abs(Kc0(i, j));
       knorm = std::max(knorm, row);
     }
-    res.solve_residual = max_abs_of(r) / (knorm * max_abs_of(u));
+    solve_residual = max_abs_of(r) / (knorm * max_abs_of(u));
   }
-  // Tip deflection: mean over the DG copies of the nodes at x = L.
+  return u;
+}
+
+/// Tip deflection: mean over the DG copies of the nodes at x = L.
+double tip_deflection(const Model& model, const LinearizedModel& lin, const std::vector<double>& u, double L) {
+  const GlobalId ne = model.mesh.num_elements();
   double wsum = 0;
   int wcount = 0;
   for (GlobalId e = 0; e < ne; ++e)
     for (int A = 0; A < 6; ++A)
       if (model.X[e * 18 + A * 3] > L - 1e-12) wsum += u[lin.dof(e, A * 3 + 2)], ++wcount;
-  res.w_tip = wsum / wcount;
-  const double I = b * h * h * h / 12, G = E / (2 * (1 + nu)), kappa_s = 5.0 / 6.0;
-  res.w_eb = P * L * L * L / (3 * E * I);
-  res.w_t = res.w_eb + P * L / (kappa_s * G * b * h);
+  return wsum / wcount;
+}
+
+/// Accuracy of K along the solution u (fd_residual, fd_step_diff, kv_err, reaction_err of `res`).
+void measure_stiffness_accuracy(LinearizedModel& lin, const Model& model, const BandMatrix& K,
+                                const std::vector<double>& u, const CantileverLoads& loads, double P,
+                                CantileverResult& res) {
+  const int n = lin.n;
+  const GlobalId ne = model.mesh.num_elements();
   // Accuracy of K: the directional derivative of the exact forces along the solution, with two steps
   // (max |s u| = 1e-9 and 1e-8: the slope-induced membrane force Dn |s u'|^3 stays below 1e-9 of the load),
   // must reproduce f on the free DOFs, and K u on all DOFs.
-  const double umax = max_abs_of(u), fmax = max_abs_of(f);
+  const double umax = max_abs_of(u), fmax = max_abs_of(loads.f);
   const auto d1 = lin.directional_derivative(u, 1e-9 / umax);
   const auto d2 = lin.directional_derivative(u, 1e-8 / umax);
   const auto Ku = K.times(u);
   double reaction_z = 0;
   for (int i = 0; i < n; ++i) {
-    if (!fixed[i]) res.fd_residual = std::max(res.fd_residual, std::abs(d1[i] - f[i]) / fmax);
+    if (!loads.fixed[i]) res.fd_residual = std::max(res.fd_residual, std::abs(d1[i] - loads.f[i]) / fmax);
     res.fd_step_diff = std::max(res.fd_step_diff, std::abs(d1[i] - d2[i]) / fmax);
     res.kv_err = std::max(res.kv_err, std::abs(Ku[i] - d1[i]) / fmax);
   }
@@ -585,6 +590,35 @@ CantileverResult solve_cantilever(int nx, int ny, double h) {
     for (int A = 0; A < 6; ++A)
       if (model.X[e * 18 + A * 3] < 1e-12) reaction_z += Ku[lin.dof(e, A * 3 + 2)];
   res.reaction_err = std::abs(reaction_z + P) / P;  // internal forces at the clamp balance the tip load
+}
+
+/// Linearized clamped-free strip [0, L] x [0, b], nx x ny cells (alternating diagonals), nu = 0, tip load P
+/// (z) at x = L as consistent nodal loads on the end edges; all DG copies of the nodes at x = 0 clamped
+/// (positions and directors).
+CantileverResult solve_cantilever(int nx, int ny, double h) {
+  const double L = 1.0, b = 0.1, E = 1.0e3, nu = 0.0, P = 1.0;
+  auto mesh = mesh::make_rectangle(L, b, nx, ny, mesh::DiagonalPattern::Alternating);
+  mesh::promote_to_p2(mesh);
+  Model model(mesh, E, nu, h);
+  LinearizedModel lin(model);
+  CantileverResult res{};
+  res.n = lin.n, res.bandwidth = lin.bandwidth, res.colors = lin.num_colors;
+  // FD steps. In-plane position columns: 1e-7 (L = 1) balances round-off (the membrane strain 1/2 (a.a - 1)
+  // of O(1) vectors loses 1e-16 absolute, i.e. 1e-16/step relative) and truncation (cubic force terms,
+  // Dn (step/l_E)^2 relative). Out-of-plane columns (z positions, director rotations): their forces carry no
+  // O(1) cancellation, and the only nonlinearity is the membrane strain a_z^2/2, whose central-difference
+  // error is a spurious geometric stiffness ~ Dn (step/l_E)^2 ~ Dn 1e-11 for a step of 1e-7 -- already 1e-3
+  // of the bending stiffness Dm ~ Dn h^2/12 at h = 1e-3 (seen as K u != FD(u) at the 2.5e-3 level). A step
+  // of 1e-10 makes it 1e-17 Dn; the director block is exactly quadratic (any step).
+  BandMatrix K = lin.stiffness(1e-7, 1e-10, res.asym, res.leak);
+  // Loads and constraints.
+  const CantileverLoads loads = cantilever_loads(model, lin, L, b, P);
+  const auto u = solve_clamped(K, loads.f, loads.fixed, res.solve_residual);
+  res.w_tip = tip_deflection(model, lin, u, L);
+  const double I = b * h * h * h / 12, G = E / (2 * (1 + nu)), kappa_s = 5.0 / 6.0;
+  res.w_eb = P * L * L * L / (3 * E * I);
+  res.w_t = res.w_eb + P * L / (kappa_s * G * b * h);
+  measure_stiffness_accuracy(lin, model, K, u, loads, P, res);
   return res;
 }
 
