@@ -67,6 +67,15 @@ double centroid_distance2(const double* f, const double* g) {
 /// Both contain the sub-triangles, which lie in the nodes' convex hull.
 constexpr int bound_values = 10;
 
+/// The contact faces as the kernels see them, owned ones first, then the contact ghosts (ShellContact::faces_): a
+/// face's six position nodes (positions, velocities), its bounds, and its bounds with how far it has moved since
+/// the search.
+struct PerContactFace {};
+using FaceNodesView = RowsView<PerContactFace, position_nodes, 3, const double>;
+using FaceBoundsView = RowsView<PerContactFace, 1, bound_values, const double>;
+using FaceBoundsAndMoveView = RowsView<PerContactFace, 1, bound_values + 1, double>;
+FaceNodesView face_nodes(const std::vector<double>& values) { return {values.data(), values.size() / face_values}; }
+
 /// How far the farthest of a face's six nodes (18 values) has moved from where it was (18 values).
 double largest_move(const double* fx, const double* before) {
   double d2 = 0;
@@ -172,14 +181,21 @@ bool ShellContact::moved_beyond_margin() const {
 // this rank needs: the contact ghosts. The reach also covers the tie band of find_contacts (faces within `tie` of the
 // nearest contact's gap), so that the face chosen is a function of the faces near the node only.
 void ShellContact::search() {
+  describe_owned_faces();
+  build_candidate_lists(gather_contact_ghosts());
+  measure_gaps_at_search();
+  searched_ = true;
+}
+
+// The owned faces in nodes_of_ order: ids, thickness, mean node mass, vertices and reference positions.
+void ShellContact::describe_owned_faces() {
   const auto& dm = model_.dm;
-  const int P = dm.num_ranks(), me = dm.rank();
   const std::size_t owned_faces = nodes_of_.size();
   faces_.resize(owned_faces);
   for (std::size_t i = 0; i < owned_faces; ++i) {
     const LocalId le = nodes_of_[i];
     Face& f = faces_[i];
-    f.gid = dm.element_gid(le), f.local = le, f.owner = me;
+    f.gid = dm.element_gid(le), f.local = le, f.owner = dm.rank();
     f.half_thickness = 0.5 * model_.sections[std::size_t(dm.element_block(le))].thickness;
     f.mean_mass = 0;
     for (int A = 0; A < position_nodes; ++A) f.mean_mass += *model_.mass.at(le, A) / position_nodes;
@@ -188,9 +204,16 @@ void ShellContact::search() {
   face_X_.resize(owned_faces * face_values);
   for (std::size_t i = 0; i < owned_faces; ++i)
     std::copy(model_.X.at(nodes_of_[i]), model_.X.at(nodes_of_[i]) + face_values, face_X_.begin() + std::ptrdiff_t(i * face_values));
+}
 
-  // Every rank's reach: the box of its nodes grown by the largest c_A plus the margin (empty: a flag of 0).
-  std::vector<double> mine(7, 0.0);
+// The contact ghosts: every rank's reach (the box of its nodes grown by the largest c_A, the margin and the tie
+// band) from O(P) numbers, each owned face that overlaps another rank's reach sent to it, the ghosts' positions
+// received. Returns every face's box (owned, then ghosts) grown by its half thickness.
+std::vector<Box> ShellContact::gather_contact_ghosts() {
+  const auto& dm = model_.dm;
+  const int P = dm.num_ranks(), me = dm.rank();
+  const std::size_t owned_faces = nodes_of_.size();
+  std::vector<double> mine(7, 0.0);  // lo, hi, then 1 (0: no nodes here)
   if (owned_faces > 0) {
     const Box b = Box::around(face_x_.data(), int(owned_faces * position_nodes)).inflated(max_half_thickness_ + margin_ + tie_);
     for (std::size_t c = 0; c < 3; ++c) mine[c] = b.lo[c], mine[3 + c] = b.hi[c];
@@ -232,24 +255,29 @@ void ShellContact::search() {
   x_search_ = face_x_;
   for (std::size_t i = owned_faces; i < faces_.size(); ++i)
     face_boxes.push_back(Box::around(&face_x_[i * face_values], position_nodes).inflated(faces_[i].half_thickness));
+  return face_boxes;
+}
 
+// Each owned node's candidate faces (a Kokkos kernel: each iteration fills its own node's list only), ascending
+// face gid: the faces whose boxes come within its reach, less those sharing a vertex with its element and those
+// overlapping it in the reference configuration.
+void ShellContact::build_candidate_lists(std::vector<Box> face_boxes) {
   const BinGrid grid(std::move(face_boxes), margin_ + 2 * max_half_thickness_);
-  const std::size_t nodes = owned_faces * position_nodes;
+  const std::size_t nodes = nodes_of_.size() * position_nodes;
   std::vector<std::vector<int>> lists(nodes);
   std::vector<int>* list_of = lists.data();
   const BinGrid* bins = &grid;  // read only: its queries are safe from any thread
   const Face* faces = faces_.data();
-  const double* x = face_x_.data();
-  const double* X = face_X_.data();
+  const FaceNodesView x = face_nodes(face_x_), X = face_nodes(face_X_);
   // The faces' bounds in the reference configuration, for the overlap test.
   std::vector<double> reference_bounds(faces_.size() * bound_values);
   for (std::size_t j = 0; j < faces_.size(); ++j) write_face_bounds(&face_X_[j * face_values], &reference_bounds[j * bound_values]);
-  const double* X_bounds = reference_bounds.data();
+  const FaceBoundsView X_bounds(reference_bounds.data(), faces_.size());
   const double node_reach = margin_ + tie_;  // the tie band too: every face within it of a contact is a candidate
   Kokkos::parallel_for("shellfrac::ContactCandidates", KernelRange(0, nodes), [=](const std::size_t k) {
     const Face& own = faces[k / position_nodes];
-    const Box q = Box::around(x + 3 * k, 1).inflated(own.half_thickness + node_reach);
-    std::vector<int>& list = list_of[k];  // each iteration fills its own node's list only
+    const Box q = Box::around(x.point(LocalId(k)), 1).inflated(own.half_thickness + node_reach);
+    std::vector<int>& list = list_of[k];
     for (int j : bins->overlapping(q)) {
       const Face& f = faces[j];
       bool shares_vertex = false;
@@ -259,8 +287,8 @@ void ShellContact::search() {
       // Shells that overlap in the reference configuration (a thick shell's neighbours beyond the vertex ring,
       // parts placed inside each other) never contact: the pair is the shell itself, not two surfaces meeting.
       const double overlap = own.half_thickness + f.half_thickness;
-      if (distance_bound(X + 3 * k, X_bounds + std::size_t(j) * bound_values) < overlap * (1 + 1e-9) &&  // the bound allowed its round-off
-          nearest_point_of_face(X + 3 * k, X + std::size_t(j) * face_values).distance < overlap)
+      if (distance_bound(X.point(LocalId(k)), X_bounds.at(j)) < overlap * (1 + 1e-9) &&  // the bound allowed its round-off
+          nearest_point_of_face(X.point(LocalId(k)), X.at(j)).distance < overlap)
         continue;
       list.push_back(j);
     }
@@ -273,22 +301,26 @@ void ShellContact::search() {
     candidate_offset_.push_back(int(candidates_.size()));
   }
   candidate_gap_.resize(candidates_.size());
+}
 
-  // Each candidate's gap at the search: find_contacts need not measure a face that cannot have come near enough
-  // since (its gap now is at least this less how far the node and the face's nodes have moved).
+// Each candidate's gap at the search: find_contacts need not measure a face that cannot have come near enough
+// since (its gap now is at least this less how far the node and the face's nodes have moved).
+void ShellContact::measure_gaps_at_search() {
   gap_at_search_.resize(candidates_.size());
   double* gap_at_search = gap_at_search_.data();
   const int* offset = candidate_offset_.data();
   const int* candidates = candidates_.data();
-  Kokkos::parallel_for("shellfrac::ContactGapsAtSearch", KernelRange(0, nodes), [=](const std::size_t k) {
-    const Face& own = faces[k / position_nodes];
-    for (int n = offset[k]; n < offset[k + 1]; ++n) {
-      const int j = candidates[n];
-      gap_at_search[n] = nearest_point_of_face(x + 3 * k, x + std::size_t(j) * face_values).distance -
-                         (own.half_thickness + faces[j].half_thickness);
-    }
-  });
-  searched_ = true;
+  const Face* faces = faces_.data();
+  const FaceNodesView x = face_nodes(face_x_);
+  Kokkos::parallel_for("shellfrac::ContactGapsAtSearch", KernelRange(0, nodes_of_.size() * position_nodes),
+                       [=](const std::size_t k) {
+                         const Face& own = faces[k / position_nodes];
+                         for (int n = offset[k]; n < offset[k + 1]; ++n) {
+                           const int j = candidates[n];
+                           gap_at_search[n] = nearest_point_of_face(x.point(LocalId(k)), x.at(j)).distance -
+                                              (own.half_thickness + faces[j].half_thickness);
+                         }
+                       });
 }
 
 // The ghosts' positions (and, with friction, velocities), in the order of send_.
@@ -314,104 +346,136 @@ void ShellContact::exchange_ghost_positions() {
   }
 }
 
-// Per node (a Kokkos kernel: each iteration writes its own node's result only). The face is the nearest one, except
-// that among the faces within `tie` of the nearest gap the one whose centre is nearest to the node's own element's
-// wins (theory.md §12.5): where the node meets a vertex or an edge of the other surface, every DG copy of that vertex
-// is equally near, and the rule gives each element's nodes the element opposite, instead of piling every node on the
-// copy of the lowest id. A function of the set of faces within reach, so of neither the search's timing nor the ranks.
-void ShellContact::find_contacts(const double step) {
-  const Face* faces = faces_.data();
-  const double* x = face_x_.data();
-  const int* offset = candidate_offset_.data();
-  const int* candidates = candidates_.data();
-  double* gaps = candidate_gap_.data();  // each node writes its own candidates' entries
-  NodeContact* out = contact_.data();
-  const double* mass = model_.mass.data();
-  const LocalId* element = nodes_of_.data();
-  const double penalty = penalty_per_dt2_, tie = tie_, dt = dt_;
-  const FrictionParams friction = friction_;
-  const double* v = face_v_.data();
-  const double* at_search = x_search_.data();
-  const double* gap_at_search = gap_at_search_.data();
-  face_bounds_.resize(faces_.size() * (bound_values + 1));
-  double* bounds = face_bounds_.data();  // per face: its bounds, then how far it has moved since the search
-  Kokkos::parallel_for("shellfrac::ContactFaceBounds", KernelRange(0, faces_.size()), [=](const std::size_t j) {
-    double* b = bounds + (bound_values + 1) * j;
-    write_face_bounds(x + j * face_values, b);
-    b[bound_values] = largest_move(x + j * face_values, at_search + j * face_values);
-  });
-  Kokkos::parallel_for("shellfrac::ShellContact", KernelRange(0, contact_.size()), [=](const std::size_t k) {
-    const std::size_t e = k / position_nodes;
+/// The contact of each owned node (find_contacts): the gaps to its candidates, the face chosen, the contact's normal,
+/// stiffness and friction. Reads the faces and candidates of the last search; writes the node's own entries only.
+struct ShellContact::NodeSearch {
+  const Face* faces;
+  FaceNodesView x, v, at_search;          // the faces' nodes now, their velocities (friction), at the search
+  const int *offset, *candidates;         // per node: its candidates' range, and the faces
+  double* gaps;                           // per candidate: the step's gap
+  const double* gap_at_search;            // per candidate
+  ConstViewOf<PositionNodeScalars> mass;  // the owned nodes' masses
+  const LocalId* element;                 // per owned face: its element
+  FaceBoundsAndMoveView bounds;           // per face: its bounds now and how far it has moved since the search
+  NodeContact* out;
+  double penalty, tie, dt, step;
+  FrictionParams friction;
+
+  NodeSearch(ShellContact& c, double step_length)
+      : faces(c.faces_.data()), x(face_nodes(c.face_x_)), v(face_nodes(c.face_v_)), at_search(face_nodes(c.x_search_)),
+        offset(c.candidate_offset_.data()), candidates(c.candidates_.data()), gaps(c.candidate_gap_.data()),
+        gap_at_search(c.gap_at_search_.data()), mass(kernel_view(c.model_.mass)), element(c.nodes_of_.data()),
+        bounds(c.face_bounds_.data(), c.faces_.size()), out(c.contact_.data()), penalty(c.penalty_per_dt2_),
+        tie(c.tie_), dt(c.dt_), step(step_length), friction(c.friction_) {}
+
+  void operator()(const std::size_t node) const {
+    const LocalId k = LocalId(node);
+    const std::size_t e = node / position_nodes;
     const Face& own = faces[e];
-    const double* p = x + 3 * k;
-    const double* q = at_search + 3 * k;
+    const double nearest = measure_gaps(k, own);
+    out[k] = NodeContact{};
+    if (!(nearest < 0)) return;
+    NodeContact best = choose_in_tie_band(k, LocalId(e), nearest);
+    if (!(best.gap < 0)) return;  // the face chosen in the tie band is not touched: no force (never a pull)
+    set_normal(x.point(k), best);
+    // k = s m_A mbar_F / ((mbar_A + mbar_F) dt^2), mbar the elements' mean node masses: the same k / m_A on every node
+    // of an element, half the wall's between equal elements, and a heavy element's nodes do not press a light one's
+    // harder than it can take (theory.md §12.5).
+    const double mA = mass(element[e] * position_nodes + k % position_nodes);
+    const double mF = faces[best.face].mean_mass;
+    best.stiffness = penalty * mA * mF / (own.mean_mass + mF);
+    if (friction.enabled()) add_friction(k, mA, mF, best);
+    out[k] = best;
+  }
+
+  // The gap to each candidate, and the nearest. Only gaps below the tie band's upper end (nearest + tie with
+  // nearest < 0) can matter, so a face whose gap is bounded from below by more than twice the band (room for
+  // round-off) keeps the bound as its gap: the same faces are chosen, with the same gaps, as if every face were
+  // measured. The bounds, cheapest first: the gap at the search less how far the node and the face have moved
+  // since; the face's sphere and box now.
+  double measure_gaps(LocalId k, const Face& own) const {
+    const double *p = x.point(k), *q = at_search.point(k);
     const double moved = std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
     double nearest = std::numeric_limits<double>::infinity();
     for (int n = offset[k]; n < offset[k + 1]; ++n) {
-      // Only gaps below the tie band's upper end (nearest + tie with nearest < 0) can matter, so a face whose gap
-      // is bounded from below by more than twice the band (room for round-off) keeps the bound as its gap: the same
-      // faces are chosen, with the same gaps, as if every face were measured. The bounds, cheapest first: the gap
-      // at the search less how far the node and the face have moved since; the face's sphere and box now.
       const int j = candidates[n];
-      const double* b = bounds + (bound_values + 1) * std::size_t(j);
+      const double* b = bounds.at(j);
       const double since_search = gap_at_search[n] - moved - b[bound_values];
       if (since_search > 2 * tie) {
         gaps[n] = since_search;
       } else {
         const double reach = own.half_thickness + faces[j].half_thickness;
         const double bound = distance_bound(p, b) - reach;
-        gaps[n] = bound > 2 * tie ? bound : nearest_point_of_face(p, x + std::size_t(j) * face_values).distance - reach;
+        gaps[n] = bound > 2 * tie ? bound : nearest_point_of_face(p, x.at(j)).distance - reach;
       }
       nearest = std::min(nearest, gaps[n]);
     }
-    out[k] = NodeContact{};
-    if (!(nearest < 0)) return;
+    return nearest;
+  }
+
+  // Among the faces within `tie` of the nearest gap, the one whose centre is nearest to the node's own element's.
+  NodeContact choose_in_tie_band(LocalId k, LocalId e, double nearest) const {
     NodeContact best;
     double best_centre = std::numeric_limits<double>::infinity();
     for (int n = offset[k]; n < offset[k + 1]; ++n) {
       if (gaps[n] > nearest + tie) continue;
       const int j = candidates[n];
-      const double centre = centroid_distance2(x + e * face_values, x + std::size_t(j) * face_values);
+      const double centre = centroid_distance2(x.at(e), x.at(j));
       if (centre < best_centre) best_centre = centre, best.face = j, best.gap = gaps[n];
     }
-    if (!(best.gap < 0)) return;  // the face chosen in the tie band is not touched: no force (never a pull)
-    const FacePoint best_point = nearest_point_of_face(p, x + std::size_t(best.face) * face_values);
+    return best;
+  }
+
+  // The nearest point of the chosen face to node p: its sub-triangle and weights, and the contact normal from it to
+  // the node (the sub-triangle's normal if the node is on the face's mid-surface).
+  void set_normal(const double* p, NodeContact& best) const {
+    const FacePoint best_point = nearest_point_of_face(p, x.at(best.face));
     best.sub = best_point.sub;
     for (int i = 0; i < 3; ++i) best.w[i] = best_point.w[i];
     if (best_point.distance > 0) {
       for (int i = 0; i < 3; ++i) best.normal[i] = (p[i] - best_point.y[i]) / best_point.distance;
-    } else {  // the node is on the face's mid-surface: push it along the sub-triangle's normal
-      const double* fx = x + std::size_t(best.face) * face_values;
-      const double *a = fx + 3 * sub_triangles[best.sub][0], *b = fx + 3 * sub_triangles[best.sub][1],
-                   *c = fx + 3 * sub_triangles[best.sub][2];
-      const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-      double nrm[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-      const double l = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
-      for (int i = 0; i < 3; ++i) best.normal[i] = l > 0 ? nrm[i] / l : (i == 2 ? 1.0 : 0.0);
+      return;
     }
-    // k = s m_A mbar_F / ((mbar_A + mbar_F) dt^2), mbar the elements' mean node masses: the same k / m_A on every node
-    // of an element, half the wall's between equal elements, and a heavy element's nodes do not press a light one's
-    // harder than it can take (theory.md §12.5).
-    const double mA = mass[std::size_t(element[e]) * position_nodes + k % position_nodes];
-    const double mF = faces[best.face].mean_mass;
-    best.stiffness = penalty * mA * mF / (own.mean_mass + mF);
-    if (friction.enabled()) {
-      // The slip of the node against the face's nearest point, whose velocity is the face nodes' weighted as the
-      // reaction; the pair's effective mass 1 / (1/m_A + sum w_j^2 / mbar_F) stops it in one step (eq. 12.6b).
-      const double* fv = v + std::size_t(best.face) * face_values;
-      double slip[3], w2 = 0;
-      for (int i = 0; i < 3; ++i) slip[i] = v[3 * k + i];
-      for (int j = 0; j < 3; ++j) {
-        const double* vj = fv + 3 * sub_triangles[best.sub][j];
-        for (int i = 0; i < 3; ++i) slip[i] -= best.w[j] * vj[i];
-        w2 += best.w[j] * best.w[j];
-      }
-      const double m_eff = 1 / (1 / mA + w2 / mF);
-      coulomb_friction(friction, best.normal, slip, -best.stiffness * best.gap, m_eff, dt, best.friction);
-      best.dissipation = friction_dissipation(best.friction, slip, step);
+    const int* corner = sub_triangles[best.sub];
+    const double *a = &x(best.face, corner[0], 0), *b = &x(best.face, corner[1], 0);
+    const double* c = &x(best.face, corner[2], 0);
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    double nrm[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    const double l = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+    for (int i = 0; i < 3; ++i) best.normal[i] = l > 0 ? nrm[i] / l : (i == 2 ? 1.0 : 0.0);
+  }
+
+  // The slip of the node against the face's nearest point, whose velocity is the face nodes' weighted as the
+  // reaction; the pair's effective mass 1 / (1/m_A + sum w_j^2 / mbar_F) stops it in one step (eq. 12.6b).
+  void add_friction(LocalId k, double mA, double mF, NodeContact& best) const {
+    double slip[3], w2 = 0;
+    for (int i = 0; i < 3; ++i) slip[i] = v.point(k)[i];
+    for (int j = 0; j < 3; ++j) {
+      const double* vj = &v(best.face, sub_triangles[best.sub][j], 0);
+      for (int i = 0; i < 3; ++i) slip[i] -= best.w[j] * vj[i];
+      w2 += best.w[j] * best.w[j];
     }
-    out[k] = best;
+    const double m_eff = 1 / (1 / mA + w2 / mF);
+    coulomb_friction(friction, best.normal, slip, -best.stiffness * best.gap, m_eff, dt, best.friction);
+    best.dissipation = friction_dissipation(best.friction, slip, step);
+  }
+};
+
+// Per node (a Kokkos kernel: each iteration writes its own node's result only). The face is the nearest one, except
+// that among the faces within `tie` of the nearest gap the one whose centre is nearest to the node's own element's
+// wins (theory.md §12.5): where the node meets a vertex or an edge of the other surface, every DG copy of that vertex
+// is equally near, and the rule gives each element's nodes the element opposite, instead of piling every node on the
+// copy of the lowest id. A function of the set of faces within reach, so of neither the search's timing nor the ranks.
+void ShellContact::find_contacts(const double step) {
+  face_bounds_.resize(faces_.size() * (bound_values + 1));
+  const FaceBoundsAndMoveView bounds(face_bounds_.data(), faces_.size());
+  const FaceNodesView x = face_nodes(face_x_), at_search = face_nodes(x_search_);
+  Kokkos::parallel_for("shellfrac::ContactFaceBounds", KernelRange(0, faces_.size()), [=](const std::size_t j) {
+    double* b = bounds.at(LocalId(j));
+    write_face_bounds(x.at(LocalId(j)), b);
+    b[bound_values] = largest_move(x.at(LocalId(j)), at_search.at(LocalId(j)));
   });
+  Kokkos::parallel_for("shellfrac::ShellContact", KernelRange(0, contact_.size()), NodeSearch(*this, step));
 }
 
 // The forces: each node's own first, then the reactions on each face node in the order of (face gid, node gid, face

@@ -69,9 +69,15 @@ class ShellContact {
     double dissipation = 0;          ///< what it takes over the step
   };
 
+  struct NodeSearch;  // the per-node kernel of find_contacts
+
   void pack_owned_motion(const ShellState& s);
   bool moved_beyond_margin() const;
   void search();
+  void describe_owned_faces();
+  std::vector<Box> gather_contact_ghosts();
+  void build_candidate_lists(std::vector<Box> face_boxes);
+  void measure_gaps_at_search();
   void exchange_ghost_positions();
   void find_contacts(double step);
   void apply_forces(ShellState& s);
