@@ -149,6 +149,87 @@ KOKKOS_INLINE_FUNCTION void return_map_g(double z, const double w[num_modes], co
   newton_step = -psi / dpsi;
 }
 
+/// The scalar equation g(z) = 0 of the return map (theory.md §4.3 steps 3-4): the trial state's spectral weights
+/// w and rates b, sigma_y(alpha_n), H/h, and the yield residual tolerance (1e-13 Y0).
+struct ReturnMapEquation {
+  double w[num_modes], b[num_modes];
+  double sy_n, H_h, g_tol;
+  KOKKOS_INLINE_FUNCTION void evaluate(double z, double& F, double& g, double& newton_step) const {
+    return_map_g(z, w, b, sy_n, H_h, F, g, newton_step);
+  }
+};
+
+/// Step 3: the tight initial bracket [lo, hi] of the root from the two bounds of F (see resultant_return_map), with
+/// its round-off fallbacks. Returns true if a bracket end is the root (z is then that end); sets res.converged to
+/// false if the doublings of hi ran out.
+KOKKOS_INLINE_FUNCTION bool bracket_return_map_root(const ReturnMapEquation& eq, double F0, double& lo, double& hi,
+                                                    double& z, ReturnMapResult& res) {
+  constexpr int max_bracket_doublings = 64;  // round-off fallback only; never needed in exact arithmetic
+  double b_min = 0.0, b_max = 0.0;
+  for (int k = 0; k < num_modes; ++k) {
+    if (!(eq.w[k] > 0.0)) continue;
+    if (b_min == 0.0 || eq.b[k] < b_min) b_min = eq.b[k];
+    if (eq.b[k] > b_max) b_max = eq.b[k];
+  }
+  const double excess = F0 - eq.sy_n;                 // > 0
+  lo = excess / (F0 * eq.H_h + eq.sy_n * b_max);  // g(lo) >= 0 in exact arithmetic (see resultant_return_map)
+  hi = excess / (F0 * eq.H_h + eq.sy_n * b_min);  // g(hi) <= 0 in exact arithmetic
+  double F = F0, g = 0.0, step = 0.0;
+  z = lo;
+  eq.evaluate(lo, F, g, step);
+  ++res.iterations;
+  if (std::abs(g) <= eq.g_tol) return true;  // lo is the root (one active mode, or b_min = b_max)
+  if (!(g > 0.0)) {                          // round-off: the root lies in [0, lo], and g(0) > 0
+    hi = lo;
+    lo = 0.0;
+    return false;
+  }
+  eq.evaluate(hi, F, g, step);
+  ++res.iterations;
+  for (int k = 0; k < max_bracket_doublings && g > 0.0 && std::abs(g) > eq.g_tol; ++k) {
+    lo = hi;  // round-off fallback: hi *= 2 (theory.md §4.3)
+    hi *= 2.0;
+    ++res.iterations;
+    eq.evaluate(hi, F, g, step);
+  }
+  if (std::abs(g) <= eq.g_tol) {  // hi is the root
+    z = hi;
+    return true;
+  }
+  if (g > 0.0) res.converged = false;
+  return false;
+}
+
+/// Step 4: safeguarded Newton on psi = -g/F from the bracket's midpoint (an iterate outside the closed bracket is
+/// replaced by the midpoint), with the relative stopping tests of theory.md §4.3. Returns true if a test was met.
+KOKKOS_INLINE_FUNCTION bool solve_return_map(const ReturnMapEquation& eq, double lo, double hi, double& z,
+                                             ReturnMapResult& res) {
+  constexpr int max_iterations = 100;  // safeguarded Newton/bisection steps (theory.md §4.3)
+  constexpr double step_tol = 1e-14;   // |z_new - z| <= 1e-14 z_new            (theory.md §4.3)
+  double F = 0.0, g = 0.0, step = 0.0;
+  z = 0.5 * (lo + hi);
+  for (int it = 0; it < max_iterations; ++it) {
+    ++res.iterations;
+    eq.evaluate(z, F, g, step);
+    if (g > 0.0)
+      lo = z;
+    else
+      hi = z;
+    const double z_newton = z + step;
+    if (std::abs(g) <= eq.g_tol) {  // yield residual test: keep z (or its in-bracket Newton update)
+      if (z_newton >= lo && z_newton <= hi) z = z_newton;
+      return true;
+    }
+    const double z_new = (z_newton >= lo && z_newton <= hi) ? z_newton : 0.5 * (lo + hi);  // closed bracket
+    if (std::abs(z_new - z) <= step_tol * z_new) {                                         // relative step test
+      z = z_new;
+      return true;
+    }
+    z = z_new;
+  }
+  return false;
+}
+
 }  // namespace detail
 
 /// Equivalent stress sigma_eq(N, Q, M) of theory.md §4.1:
@@ -214,10 +295,10 @@ KOKKOS_INLINE_FUNCTION double equivalent_stress(const PlasticSection& s, const d
 ///    never replaced by the bracket midpoint. A loop that requires z_new strictly inside (lo, hi) replaces it
 ///    whenever Newton hits the root exactly (g(z) = 0 sets hi = z, so z_new = z is "not in (lo, hi)" and
 ///    z := (lo + hi)/2): this left a 4e-10 relative yield violation in trial 5 of an earlier Python
-///    implementation (Test 6b of test_resultant_plasticity), and up to 0.2 (pure M12, first midpoint = root,
+///    implementation (Test 6b of test_resultant_plasticity_return_map), and up to 0.2 (pure M12, first midpoint = root,
 ///    replaced by half of it) on the trial states of the RobustnessExtremeTrials test.
 ///
-/// Measured (test_resultant_plasticity): 1-7 evaluations of g per plastic return (typically 5: the two bracket
+/// Measured (test_resultant_plasticity_return_map): 1-7 evaluations of g per plastic return (typically 5: the two bracket
 /// ends + 3 Newton steps), including trial states 1e6 x yield and overshoots of 1e-14; consistency
 /// |sigma_eq - sigma_y| <= ~3e-15 sigma_y.
 ///
@@ -227,10 +308,7 @@ KOKKOS_INLINE_FUNCTION ReturnMapResult resultant_return_map(const PlasticSection
                                                             const double gam[2], const double rho[3],
                                                             const PlasticState& old, PlasticState& next, double N[3],
                                                             double Q[2], double M[3]) {
-  constexpr int max_iterations = 100;        // safeguarded Newton/bisection steps (theory.md §4.3)
-  constexpr int max_bracket_doublings = 64;  // round-off fallback only; never needed in exact arithmetic
-  constexpr double step_tol = 1e-14;         // |z_new - z| <= 1e-14 z_new            (theory.md §4.3)
-  constexpr double yield_tol = 1e-13;        // |g(z)| <= 1e-13 Y0                     (theory.md §4.3)
+  constexpr double yield_tol = 1e-13;  // |g(z)| <= 1e-13 Y0                     (theory.md §4.3)
 
   ReturnMapResult res{0.0, 0, false, true};
   const ElasticSection& el = s.elastic;
@@ -246,8 +324,9 @@ KOKKOS_INLINE_FUNCTION ReturnMapResult resultant_return_map(const PlasticSection
   elastic_resultants(el, eps, gam, rho, ep_n, gp_n, rp_n, Ntr, Qtr, Mtr);
 
   // 2. Yield test with the spectral weights (same expression as equivalent_stress).
-  constexpr int nm = detail::num_modes;
-  double w[nm], b[nm];
+  detail::ReturnMapEquation eq;
+  double* const w = eq.w;
+  double* const b = eq.b;
   detail::spectral_weights(s.a_n, Ntr, w);
   detail::spectral_weights(s.a_m, Mtr, w + 3);
   w[6] = s.a_q * (Qtr[0] * Qtr[0] + Qtr[1] * Qtr[1]);
@@ -273,66 +352,10 @@ KOKKOS_INLINE_FUNCTION ReturnMapResult resultant_return_map(const PlasticSection
   res.plastic = true;
 
   // 3.-4. One scalar equation g(z) = 0, z = dgam / sigma_eq_{n+1} (theory.md §4.3).
-  const double H_h = s.H / s.h;
-
-  double b_min = 0.0, b_max = 0.0;
-  for (int k = 0; k < nm; ++k) {
-    if (!(w[k] > 0.0)) continue;
-    if (b_min == 0.0 || b[k] < b_min) b_min = b[k];
-    if (b[k] > b_max) b_max = b[k];
-  }
-  const double excess = F0 - sy_n;                 // > 0
-  double lo = excess / (F0 * H_h + sy_n * b_max);  // g(lo) >= 0 in exact arithmetic (see the function comment)
-  double hi = excess / (F0 * H_h + sy_n * b_min);  // g(hi) <= 0 in exact arithmetic
-  double F = F0, g = 0.0, step = 0.0;
-  double z = lo;
-  bool done = false;
-  detail::return_map_g(lo, w, b, sy_n, H_h, F, g, step);
-  ++res.iterations;
-  if (std::abs(g) <= yield_tol * s.Y0) {  // lo is the root (one active mode, or b_min = b_max)
-    done = true;
-  } else if (!(g > 0.0)) {  // round-off: the root lies in [0, lo], and g(0) > 0
-    hi = lo;
-    lo = 0.0;
-  } else {
-    detail::return_map_g(hi, w, b, sy_n, H_h, F, g, step);
-    ++res.iterations;
-    for (int k = 0; k < max_bracket_doublings && g > 0.0 && std::abs(g) > yield_tol * s.Y0; ++k) {
-      lo = hi;  // round-off fallback: hi *= 2 (theory.md §4.3)
-      hi *= 2.0;
-      ++res.iterations;
-      detail::return_map_g(hi, w, b, sy_n, H_h, F, g, step);
-    }
-    if (std::abs(g) <= yield_tol * s.Y0) {  // hi is the root
-      z = hi;
-      done = true;
-    } else if (g > 0.0) {
-      res.converged = false;
-    }
-  }
-
-  if (!done) z = 0.5 * (lo + hi);
-  for (int it = 0; it < max_iterations && !done; ++it) {
-    ++res.iterations;
-    detail::return_map_g(z, w, b, sy_n, H_h, F, g, step);
-    if (g > 0.0)
-      lo = z;
-    else
-      hi = z;
-    const double z_newton = z + step;
-    if (std::abs(g) <= yield_tol * s.Y0) {  // yield residual test: keep z (or its in-bracket Newton update)
-      if (z_newton >= lo && z_newton <= hi) z = z_newton;
-      done = true;
-      break;
-    }
-    const double z_new = (z_newton >= lo && z_newton <= hi) ? z_newton : 0.5 * (lo + hi);  // closed bracket
-    if (std::abs(z_new - z) <= step_tol * z_new) {                                         // relative step test
-      z = z_new;
-      done = true;
-      break;
-    }
-    z = z_new;
-  }
+  eq.sy_n = sy_n, eq.H_h = s.H / s.h, eq.g_tol = yield_tol * s.Y0;
+  double lo = 0.0, hi = 0.0, z = 0.0, F = 0.0;
+  bool done = detail::bracket_return_map_root(eq, F0, lo, hi, z, res);
+  if (!done) done = detail::solve_return_map(eq, lo, hi, z, res);
   if (!done) res.converged = false;
 
   // 5. Resultants, multiplier, state update and plastic work at the final z.
