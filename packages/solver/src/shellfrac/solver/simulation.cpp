@@ -397,26 +397,33 @@ RunSummary Simulation::run() {
     }
     if (dyn.relaxed()) break;  // the static state (Static Relaxation)
   }
-  summary_.static_relaxation = deck_.time.static_relaxation;
-  summary_.relaxed = dyn.relaxed(), summary_.residual = dyn.relaxation_residual();
   if (!history_written) out.write_history();
   if (!frame_written) out.write_frame();
   if (checkpointing && !summary_.stopped_by_signal) write_checkpoint();  // to continue later
+  complete_summary(out, checkpoints.last(),
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return summary_;
+}
+
+// The run's end in the summary: how the static relaxation ended, peak memory, steps and wall time, the files written.
+void Simulation::complete_summary(RunOutputs& out, const std::string& last_checkpoint, double wall_seconds) {
+  const auto& dyn = *model_.dynamics;
+  summary_.static_relaxation = deck_.time.static_relaxation;
+  summary_.relaxed = dyn.relaxed(), summary_.residual = dyn.relaxation_residual();
   record_peak_memory();
   summary_.steps = dyn.step_count() - std::max(summary_.restart_step, 0L);
-  summary_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary_.wall_seconds = wall_seconds;
   const int np = parallel::size(comm_);
   summary_.files = {np == 1 ? out.exodus_path()
                             : io::rank_file_name(out.exodus_path(), np, 0) + " ... (" + std::to_string(np) + " files)",
                     out.history_path()};
-  summary_.checkpoint = checkpoints.last();
+  summary_.checkpoint = last_checkpoint;
   if (!summary_.checkpoint.empty()) summary_.files.push_back(summary_.checkpoint);
   if (dyn.fracture()) {
     out.flush_crack_log();
     summary_.files.push_back(out.fragments_path());
     summary_.files.push_back(out.cracks_path());
   }
-  return summary_;
 }
 
 }  // namespace shellfrac::solver

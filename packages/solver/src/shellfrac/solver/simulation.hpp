@@ -82,6 +82,7 @@ class Simulation {
   void summarize();
   void check_time_step();
   void record_peak_memory();
+  void complete_summary(RunOutputs& out, const std::string& last_checkpoint, double wall_seconds);
   std::string element_description(GlobalId element, int block) const;
 
   std::unique_ptr<SignalGuard> signals_;  ///< first: the handlers cover the set-up
