@@ -163,7 +163,7 @@ inline double max_abs(const std::vector<double>& v) {
 }  // namespace shellfrac::disc::test
 
 // ---------------------------------------------------------------------------------------------------------
-// Helpers for patch tests and linearized statics (test_static_verification; usable by any DG operator test).
+// Helpers for patch tests and linearized statics (test_static_verification_patch and _cantilever; usable by any DG operator test).
 namespace shellfrac::disc::test {
 
 /// Affine state x = Fm X on every DG copy (Fm a 3x3 matrix acting on the reference positions), directors

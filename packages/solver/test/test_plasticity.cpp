@@ -2,7 +2,7 @@
 //  * PlaneStrainBendingFollowsThePointLaw: a strip (nu = 0, symmetry planes on both long edges, so plane
 //    strain) bent into a circular arc by a prescribed end rotation past yield, elastic-perfectly plastic,
 //    relaxed to rest. The state is homogeneous, so the support couple must be b M11 and the plastic work
-//    b L W_p of the point law (resultant_return_map, verified on its own in test_resultant_plasticity) driven
+//    b L W_p of the point law (resultant_return_map, verified on its own in test_resultant_plasticity_*) driven
 //    along the same curvature path: asserted within 0.5 % and 1 %. Plastic work never decreases and the
 //    energy balance holds to 0.1 % of the support's work.
 //  * CylindricalPanel (xml/cylindrical_panel.xml, the paper's §6.1 half model): the centre starts at exactly

@@ -1,4 +1,4 @@
-// Unstructured flat patch for test_static_verification (membrane and bending patch tests on a genuinely
+// Unstructured flat patch for test_static_verification_patch (membrane and bending patch tests on a genuinely
 // unstructured mesh): the rectangle [0, 2] x [0, 1] in z = 0, meshed by Gmsh's Delaunay algorithm with a
 // mesh size that varies from corner to corner (0.22 .. 0.45), so that no two elements are congruent and
 // vertex valences vary. P1 triangles; the test promotes them to P2 (straight edges).

@@ -23,7 +23,7 @@
 /// Dissipation (eq. 18/26): D_rate = -dphi/d delta_max d delta_max = 1/2 (S - S' delta_max) d delta_max
 /// = 1/2 S0 d delta_max for the linear S, so D = 1/2 S0 min(delta_max, delta_f) and, at complete separation
 /// (delta_max >= delta_f = 2 Gamma/sigma_c), D = 1/2 h sigma_c 2 Gamma/sigma_c = Gamma h (theory.md §9.7).
-/// Along any path, int n_c.d[[phi]] + m_c.d[[t]] = phi + D (test_cohesive_law verifies this numerically).
+/// Along any path, int n_c.d[[phi]] + m_c.d[[t]] = phi + D (test_cohesive_law_dissipation verifies this numerically).
 ///
 /// Bounds: n = s delta <= S(delta_max) <= S0, hence |n_c| <= max(1, alpha1) S0 and |m_c| <= max(alpha2, alpha3) h S0
 /// (so |n_c| <= S0 holds for alpha1 <= 1 only; theory.md §9.3).
