@@ -182,6 +182,7 @@ int run(int argc, char** argv) {
     std::cout << "  peak resident memory: " << out.peak_memory_max / (1024.0 * 1024 * 1024) << " GiB on rank "
               << out.peak_memory_rank << " (the largest), " << out.peak_memory_sum / 1024.0 / double(out.elements)
               << " kB per element over all ranks\n";
+    std::cout << out.physics.text();
     for (const auto& f : out.files) std::cout << "  wrote " << f << "\n";
     if (out.stopped_by_signal)
       std::cout << "  stopped by " << out.stop_signal << " at step " << std::max(out.restart_step, 0L) + out.steps << "; continue with --restart "

@@ -5,6 +5,7 @@ reference in docs/ equal to what the program prints, every example deck valid.
 
 usage: test_cli.py SOURCE_DIR SHELLFRAC MESHTOOL MPIEXEC [MPIEXEC_PREFLAGS...]
 """
+import json
 import os
 import re
 import shutil
@@ -109,7 +110,16 @@ class Shellfrac(unittest.TestCase):
         r = run([SHELLFRAC, deck], cwd=self.dir, np=3)
         self.assertEqual(r.returncode, 0, r.stderr)
         files = sorted(os.listdir(self.dir))
-        self.assertEqual(files, ["run.exo.3.0", "run.exo.3.1", "run.exo.3.2", "run.xml", "run_history.csv"])
+        self.assertEqual(files, ["run.exo.3.0", "run.exo.3.1", "run.exo.3.2", "run.xml", "run_history.csv",
+                                 "run_summary.json"])
+        # the run summary (docs/output.md "The run summary"): no edge can break here, no block is plastic
+        with open(os.path.join(self.dir, "run_summary.json")) as f:
+            summary = json.load(f)
+        self.assertEqual((summary["fracture"], summary["plasticity"], summary["fragments"]), (False, False, 1))
+        self.assertIsNone(summary["first_activation_time"])
+        self.assertGreaterEqual(summary["largest_energy_balance_error"], 0.0)
+        self.assertLess(summary["largest_energy_balance_error"], 1e-3)
+        self.assertIn("physics: largest energy-balance error", r.stdout)
         with open(os.path.join(self.dir, "run_history.csv")) as f:
             header = f.readline().strip()
         self.assertTrue(header.startswith("step,time,dt,kinetic_energy,strain_energy,penalty_energy,external_work,"
@@ -117,7 +127,7 @@ class Shellfrac(unittest.TestCase):
         # a later serial run replaces the set by one file (no stale pieces left for ParaView to pick up)
         r = run([SHELLFRAC, deck], cwd=self.dir)
         self.assertEqual(r.returncode, 0, r.stderr)
-        self.assertEqual(sorted(os.listdir(self.dir)), ["run.exo", "run.xml", "run_history.csv"])
+        self.assertEqual(sorted(os.listdir(self.dir)), ["run.exo", "run.xml", "run_history.csv", "run_summary.json"])
 
     def test_progress_lines_with_an_eta_and_quiet(self):
         # Progress Interval 1e-9 s: a line after every step, on rank 0 only; the plan comes first.

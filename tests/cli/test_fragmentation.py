@@ -14,6 +14,11 @@ Asserted:
   * a Weibull strength gives bitwise the same history, crack log and fragment table on 1, 2 and 3 ranks and through
     a restart written on 3 ranks and continued on 2; another seed gives other cracks; the crack log carries each
     edge's drawn strength, within the distribution's bounds;
+  * the run summary (<base>_summary.json, docs/output.md "The run summary") says what the tables say: the
+    largest energy-balance error over the history rows relative to |E0| + |W_ext| + |W_react|, the first
+    activation of the crack log, the first history row with a separated edge, the last row's edge and fragment
+    counts, the heaviest and the fastest piece of the last fragment table; and it is the same on 1, 2 and 3 ranks and
+    through the restart (the checkpoint carries it);
   * fragment size against theory (docs/fragmentation.md, tools/fragmentation_study.py): the ring sized for 40
     fragments of the Zhou-Molinari-Ramesh size at eps_dot/eps0 = 10 (Int. J. Impact Eng. 33, 2006:
     s/s0 = 4.5/(1 + 4.5 rate^(2/3)) = 0.2056), 640 cells, Weibull m = 12, seed 1: the mean fragment length at the
@@ -32,6 +37,8 @@ usage: test_fragmentation.py SOURCE_DIR SHELLFRAC MPIEXEC [MPIEXEC_PREFLAGS...]
 import csv
 import filecmp
 import glob
+import json
+import math
 import os
 import shutil
 import sys
@@ -90,6 +97,43 @@ class Ring(unittest.TestCase):
             steps[int(r[head.index("step")])] = steps.get(int(r[head.index("step")]), 0) + 1
         return steps, head, rows
 
+    def summary_of(self, sub):
+        """The run summary of the run in `sub`, checked against its history, crack log and fragment table; without
+        the deck's path (which names the run's directory)."""
+        with open(os.path.join(sub, "ring_summary.json")) as f:
+            summary = json.load(f)
+        head, rows = read_csv(os.path.join(sub, "ring_history.csv"))
+        col = {name: head.index(name) for name in head}
+        stored = ("kinetic_energy", "strain_energy", "penalty_energy", "damping_dissipation", "plastic_dissipation",
+                  "cohesive_energy", "cohesive_dissipation", "activation_loss")
+        first = rows[0]
+        e0 = (sum(first[col[n]] for n in stored) - first[col["external_work"]] - first[col["reaction_work"]]
+              - first[col["energy_balance_error"]])
+        relative = [abs(r[col["energy_balance_error"]]) /
+                    (abs(e0) + abs(r[col["external_work"]]) + abs(r[col["reaction_work"]])) for r in rows]
+        self.assertAlmostEqual(summary["largest_energy_balance_error"], max(relative), delta=1e-9 * max(relative))
+        last = rows[-1]
+        self.assertEqual(summary["activated_edges"], last[col["num_cohesive_edges"]])
+        self.assertEqual(summary["separated_edges"], last[col["num_separated_edges"]])
+        self.assertEqual(summary["fragments"], last[col["num_fragments"]])
+        separated = [r[col["time"]] for r in rows if r[col["num_separated_edges"]] > 0]
+        self.assertEqual(summary["first_separation_time"], separated[0] if separated else None)
+        crack_head, cracks = read_csv(os.path.join(sub, "ring_cracks.csv"))
+        self.assertEqual(summary["first_activation_time"], cracks[0][crack_head.index("time")] if cracks else None)
+        frag_head, frames = read_csv(os.path.join(sub, "ring_fragments.csv"))
+        pieces = [p for p in frames if p[0] == frames[-1][0]]  # the table of the last frame (the end of the run)
+        mass = frag_head.index("mass")
+        momentum = [frag_head.index(f"momentum_{c}") for c in "xyz"]
+        speeds = [(p[mass], math.sqrt(sum(p[k] ** 2 for k in momentum)) / p[mass]) for p in pieces]
+        heaviest = max(speeds, key=lambda ms: ms[0])
+        fastest = max(speeds, key=lambda ms: ms[1])
+        self.assertAlmostEqual(summary["largest_fragment"]["mass"], heaviest[0], delta=1e-12 * heaviest[0])
+        self.assertAlmostEqual(summary["largest_fragment"]["speed"], heaviest[1], delta=1e-9 * heaviest[1])
+        self.assertAlmostEqual(summary["fastest_fragment"]["speed"], fastest[1], delta=1e-9 * fastest[1])
+        self.assertTrue(summary["fracture"])
+        del summary["deck"]
+        return summary
+
     def test_one_strength_activates_every_axial_edge_in_one_step(self):
         sub, _ = self.run_deck("constant", ring_deck())
         steps, _, _ = self.axial_activations_by_step(sub)
@@ -122,6 +166,10 @@ class Ring(unittest.TestCase):
                                 f"ring{suffix} differs between 1 and {np} ranks")
         _, _, rows = self.axial_activations_by_step(outputs[1])
         self.assertGreater(len(rows), 10, "the ring must break")
+        summary = self.summary_of(outputs[1])
+        self.assertGreater(summary["fragments"], 1, summary)
+        for np in (2, 3):
+            self.assertEqual(self.summary_of(outputs[np]), summary, f"the run summary differs between 1 and {np} ranks")
         # Restart the 3-rank run's first checkpoint on 2 ranks in a copy of its directory.
         restart = os.path.join(self.dir, "restart")
         shutil.copytree(outputs[3], restart)
@@ -134,6 +182,7 @@ class Ring(unittest.TestCase):
             self.assertTrue(filecmp.cmp(os.path.join(outputs[1], "ring" + suffix),
                                         os.path.join(restart, "ring" + suffix), shallow=False),
                             f"ring{suffix} after the restart on 2 ranks differs from the uninterrupted run")
+        self.assertEqual(self.summary_of(restart), summary, "the run summary after the restart differs")
         # Another seed: other flaws, other cracks.
         other, _ = self.run_deck("seed6", ring_deck(WEIBULL, seed=6))
         self.assertFalse(filecmp.cmp(os.path.join(outputs[1], "ring_cracks.csv"),

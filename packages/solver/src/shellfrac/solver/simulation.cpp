@@ -211,6 +211,7 @@ void Simulation::restart_from_checkpoint() {
     refuse_changed_physics_over_its_origin(header);
     restart_e0_ = e0->second;
     restart_marks_ = table_marks(header);
+    restart_physics_ = PhysicsSummary::restored(header.scalars);
   });
   SHELLFRAC_INPUT_REQUIRE(dyn.time() + 0.5 * dyn.time_step() < deck_.time.end_time,
                           deck_.file << ": 'Time Integration->End Time' = " << deck_.time.end_time
@@ -336,6 +337,7 @@ RunSummary Simulation::run() {
                  comm_);
   if (parallel::rank(comm_) == 0)
     for (const auto& notice : out.notices()) std::cerr << "shellfrac: notice: " << notice << "\n";
+  if (restarted) out.resume_physics(restart_physics_);
   const auto& tp = deck_.time;
   OutputSchedule frames(tp);
   if (restarted) {
@@ -417,6 +419,8 @@ void Simulation::complete_summary(RunOutputs& out, const std::string& last_check
   summary_.files = {np == 1 ? out.exodus_path()
                             : io::rank_file_name(out.exodus_path(), np, 0) + " ... (" + std::to_string(np) + " files)",
                     out.history_path()};
+  summary_.physics = out.finish_physics();
+  summary_.files.push_back(out.summary_path());
   summary_.checkpoint = last_checkpoint;
   if (!summary_.checkpoint.empty()) summary_.files.push_back(summary_.checkpoint);
   if (dyn.fracture()) {

@@ -42,6 +42,7 @@ struct RunSummary {
   double peak_memory_max = 0;      ///< the largest peak resident memory of a rank [bytes] (at the end of run())
   int peak_memory_rank = 0;        ///< ... and that rank
   double peak_memory_sum = 0;      ///< the peak resident memories of all ranks added [bytes]
+  PhysicsSummary physics;          ///< what the run's physics came to (the end of run())
 };
 
 class SignalGuard;
@@ -96,7 +97,8 @@ class Simulation {
   ResultsSets results_sets_;  ///< the sets of the Exodus results, resolved at set-up
   RunSummary summary_;
   double restart_e0_ = 0;  ///< initial energy of the restarted run (for the balance error)
-  TableMarks restart_marks_;  ///< where the CSV tables stood at the checkpoint restarted from
+  TableMarks restart_marks_;
+  PhysicsSummary restart_physics_;  ///< the physics summary as the checkpoint restarted from left it  ///< where the CSV tables stood at the checkpoint restarted from
   double progress_interval_ = 10;  ///< seconds between progress lines (Output->Progress Interval; 0 = none)
 };
 

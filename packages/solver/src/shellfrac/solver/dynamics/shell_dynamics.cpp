@@ -6,6 +6,7 @@
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/exact_sum.hpp"
+#include "shellfrac/core/parallel.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/materials/elastic_resultant.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
@@ -126,6 +127,12 @@ void ShellDynamics::step_to(double t1) {
 }
 const PhaseTimes& ShellDynamics::phase_times() const { return impl_->times; }
 bool ShellDynamics::fracture() const { return impl_->fracture.enabled(); }
+bool ShellDynamics::plasticity() const { return impl_->model.any_plastic; }
+double ShellDynamics::peak_plastic_strain() const {
+  double peak = 0;
+  for (const materials::PlasticState& p : impl_->state.plastic) peak = std::max(peak, p.alpha);
+  return parallel::max(peak, impl_->model.dm.comm());
+}
 const materials::StrengthSummary& ShellDynamics::strengths() const { return impl_->fracture.strengths(); }
 bool ShellDynamics::relaxed() const { return impl_->integrator.relaxed(); }
 double ShellDynamics::relaxation_residual() const { return impl_->integrator.relaxation_residual(); }

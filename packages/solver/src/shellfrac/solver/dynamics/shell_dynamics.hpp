@@ -94,6 +94,11 @@ class ShellDynamics {
   void restore(const std::string& file, const std::function<void(const io::CheckpointData& header)>& check);
   /// Whether any edge of the mesh may break (Fracture; the same on every rank).
   bool fracture() const;
+  /// Whether some block is plastic (the same on every rank).
+  bool plasticity() const;
+  /// The largest equivalent plastic strain alpha at an area point of any element (0 without plasticity; alpha
+  /// never decreases, so this is also the peak over the run). Collective.
+  double peak_plastic_strain() const;
   /// The breakable interfaces' drawn strengths (Fracture::strengths; the same on every rank).
   const materials::StrengthSummary& strengths() const;
   /// Static Relaxation: whether the static equilibrium has been reached, and the last relative residual (NaN

@@ -206,7 +206,8 @@ RunOutputs::RunOutputs(const Deck& deck, RunModel& model, const ResultsSets& set
       probe_members_(probe_members),
       e0_(e0),
       nodal_written_(written(nodal_result_names(), deck.output.fields)),
-      element_written_(written(element_result_names(), deck.output.fields)) {
+      element_written_(written(element_result_names(), deck.output.fields)),
+      comm_(comm) {
   const ResultPaths paths(deck);
   const bool restarted = restart_step >= 0;
   const ResultPaths restart_paths = paths.restarted(std::max(restart_step, 0L));
@@ -302,8 +303,9 @@ void RunOutputs::write_history() {
   auto& dyn = *model_.dynamics;
   StepRecord r;
   history_->write_row(history_values(&r));
+  physics_.observe(r, e0_);
   if (cracks_ && r.cohesive_edges != cracks_logged_) {
-    for (const auto& row : dyn.crack_events()) cracks_->write_row(row);
+    for (const auto& row : dyn.crack_events()) cracks_->write_row(row), physics_.observe_crack(row);
     cracks_logged_ = r.cohesive_edges;
   }
 }
@@ -312,12 +314,28 @@ void RunOutputs::flush_crack_log() {
   if (!cracks_) return;
   const GlobalId activated = model_.dynamics->record().cohesive_edges;
   if (activated == cracks_logged_) return;
-  for (const auto& row : model_.dynamics->crack_events()) cracks_->write_row(row);
+  for (const auto& row : model_.dynamics->crack_events()) cracks_->write_row(row), physics_.observe_crack(row);
   cracks_logged_ = activated;
+}
+
+const PhysicsSummary& RunOutputs::finish_physics() {
+  const auto& dyn = *model_.dynamics;
+  physics_.fracture = dyn.fracture(), physics_.plasticity = dyn.plasticity();
+  if (physics_.fracture) physics_.observe_fragments(dyn.fragment_table());
+  physics_.peak_plastic_strain = dyn.peak_plastic_strain();
+  if (parallel::rank(comm_) == 0) write_whole_file(summary_path(), physics_.json(deck_.file, dyn.time()));
+  return physics_;
+}
+
+std::string RunOutputs::summary_path() const {
+  const std::string history = history_path();
+  const std::string suffix = "_history.csv";
+  return history.substr(0, history.size() - suffix.size()) + "_summary.json";
 }
 
 io::CheckpointData RunOutputs::checkpoint(io::CheckpointData state) const {
   state.scalars["e0"] = e0_;
+  physics_.store(state.scalars);
   state.strings["deck"] = deck_.file;
   state.strings["results"] = files::resolved(deck_.output.path(""));  // <directory>/<base> of the run
   const auto mark = [&](const char* name, const std::unique_ptr<io::HistoryWriter>& table) {

@@ -15,6 +15,7 @@
 #include "shellfrac/io/checkpoint.hpp"
 #include "shellfrac/io/results_writer.hpp"
 #include "shellfrac/io/history.hpp"
+#include "shellfrac/solver/outputs/physics_summary.hpp"
 
 namespace shellfrac::solver {
 
@@ -90,6 +91,13 @@ class RunOutputs {
   std::string cracks_path() const;
   /// What the user must know about the files (a restart that could not continue a table), on rank 0.
   const std::vector<std::string>& notices() const { return notices_; }
+  /// The physics summary goes on from where the checkpoint a run restarted from left it.
+  void resume_physics(const PhysicsSummary& p) { physics_ = p; }
+  /// Completes the physics summary with the end state (fragments, peak plastic strain), writes it as
+  /// <base>_summary.json beside the history (rank 0) and returns it. Collective.
+  const PhysicsSummary& finish_physics();
+  /// <base>_summary.json (beside the history file).
+  std::string summary_path() const;
 
  private:
   /// The values of a history row of the current state (and its record, if `record`). Collective.
@@ -106,6 +114,8 @@ class RunOutputs {
   std::vector<int> nodal_written_, element_written_;   // the fields Output->Fields selects (all by default)
   GlobalId cracks_logged_ = -1;  // the count of activated edges the crack log was last written at
   std::vector<std::string> notices_;
+  PhysicsSummary physics_;
+  MPI_Comm comm_;
 };
 
 }  // namespace shellfrac::solver
