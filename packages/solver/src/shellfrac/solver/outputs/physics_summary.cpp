@@ -1,5 +1,6 @@
 #include "shellfrac/solver/outputs/physics_summary.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -35,6 +36,7 @@ template <class Summary, class Visit>
 void visit_values(Summary& s, Visit&& visit) {
   visit("largest_balance_error", s.largest_balance_error);
   visit("largest_balance_error_time", s.largest_balance_error_time);
+  visit("largest_energy_put_in", s.largest_energy_put_in);
   visit("first_activation_time", s.first_activation_time);
   visit("first_separation_time", s.first_separation_time);
 }
@@ -44,10 +46,14 @@ void visit_values(Summary& s, Visit&& visit) {
 void PhysicsSummary::observe(const StepRecord& r, double e0) {
   const double put_in = std::abs(e0) + std::abs(r.external_work) + std::abs(r.reaction_work);
   const double error = std::abs(energy_balance_error(r, e0));
-  const double relative = put_in > 0 ? error / put_in : error;
-  if (relative > largest_balance_error) largest_balance_error = relative, largest_balance_error_time = r.time;
+  if (error > largest_balance_error) largest_balance_error = error, largest_balance_error_time = r.time;
+  largest_energy_put_in = std::max(largest_energy_put_in, put_in);
   activated_edges = r.cohesive_edges, separated_edges = r.separated_edges, fragments = r.fragments;
   if (r.separated_edges > 0 && first_separation_time < 0) first_separation_time = r.time;
+}
+
+double PhysicsSummary::relative_balance_error() const {
+  return largest_energy_put_in > 0 ? largest_balance_error / largest_energy_put_in : 0.0;
 }
 
 void PhysicsSummary::observe_crack(const std::vector<double>& row) {
@@ -68,8 +74,9 @@ void PhysicsSummary::observe_fragments(const std::vector<std::vector<double>>& t
 std::string PhysicsSummary::json(const std::string& deck, double end_time) const {
   std::ostringstream os;
   os << "{\n  \"deck\": " << quoted(deck) << ",\n  \"time\": " << number(end_time) << ",\n"
-     << "  \"largest_energy_balance_error\": " << number(largest_balance_error) << ",\n"
+     << "  \"largest_energy_balance_error\": " << number(relative_balance_error()) << ",\n"
      << "  \"largest_energy_balance_error_time\": " << number(largest_balance_error_time) << ",\n"
+     << "  \"largest_energy_put_in\": " << number(largest_energy_put_in) << ",\n"
      << "  \"fracture\": " << (fracture ? "true" : "false") << ",\n"
      << "  \"first_activation_time\": " << number(first_activation_time, true) << ",\n"
      << "  \"first_separation_time\": " << number(first_separation_time, true) << ",\n"
@@ -87,8 +94,8 @@ std::string PhysicsSummary::json(const std::string& deck, double end_time) const
 std::string PhysicsSummary::text() const {
   std::ostringstream os;
   os.precision(4);
-  os << "  physics: largest energy-balance error " << largest_balance_error << " of the energy put in (at t = "
-     << largest_balance_error_time << ")\n";
+  os << "  physics: largest energy-balance error " << relative_balance_error()
+     << " of the largest energy put in (at t = " << largest_balance_error_time << ")\n";
   if (fracture) {
     os << "  fracture: " << activated_edges << " edges activated";
     if (first_activation_time >= 0) os << " (first at t = " << first_activation_time << ")";

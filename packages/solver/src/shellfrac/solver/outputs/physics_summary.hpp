@@ -15,8 +15,12 @@
 namespace shellfrac::solver {
 
 struct PhysicsSummary {
-  double largest_balance_error = 0;       ///< max |balance error| / (|E0| + |W_ext| + |W_react|) over the rows
+  double largest_balance_error = 0;       ///< the largest |energy balance error| of the history rows
   double largest_balance_error_time = 0;  ///< ... and when
+  double largest_energy_put_in = 0;       ///< the largest |E0| + |W_ext| + |W_react| of the rows
+  /// The largest balance error as a fraction of the largest energy put in (0 when nothing was put in): a measure
+  /// that noise at the start, when almost nothing is put in, cannot inflate.
+  double relative_balance_error() const;
   double first_activation_time = -1;      ///< the first activation in the crack log (-1: none)
   double first_separation_time = -1;      ///< the first history row with a fully separated edge (-1: none)
   GlobalId activated_edges = 0, separated_edges = 0, fragments = 1;  ///< at the end
@@ -26,7 +30,7 @@ struct PhysicsSummary {
   bool fracture = false;           ///< some edge can break
   bool plasticity = false;         ///< some block is plastic
 
-  /// One history row: the balance error relative to the energy put in, the edge counts, the first separation.
+  /// One history row: the balance error, the energy put in, the edge counts, the first separation.
   void observe(const StepRecord& r, double e0);
   /// One crack-log row (step, time, ...): the first activation time.
   void observe_crack(const std::vector<double>& row);
