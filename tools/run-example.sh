@@ -3,7 +3,7 @@
 # 2 MPI ranks in ./results, and plots it. Usage: tools/run-example.sh [DECK.xml] [NUM_RANKS]
 set -euo pipefail
 # The deck as the caller names it (relative to the caller's directory), before moving to the repository.
-DECK=$(realpath -e "${1:-$(dirname "$0")/../xml/cantilever_plate_oscillation.xml}") || {
+DECK=$(realpath -e "${1:-$(dirname "$0")/../xml/beam_blast_225.xml}") || {
   echo "run-example.sh: no deck '${1:-}'" >&2
   exit 2
 }
@@ -17,5 +17,5 @@ mkdir -p results
 cd results
 NAME=$(basename "$DECK" .xml)
 mpiexec --oversubscribe -np "$NP" "$ROOT/build/apps/shellfrac/shellfrac" "$DECK"
-/usr/bin/python3 "$ROOT/tools/plot_results.py" "$NAME.exo" --history "${NAME}_history.csv" -o "$NAME.png"
-echo "results in $(pwd): $NAME.exo$([ "$NP" -gt 1 ] && echo ".$NP.*"), ${NAME}_history.csv, $NAME.png"
+/usr/bin/python3 "$ROOT/tools/plot_results.py" "$NAME.exo" -o "$NAME.png"
+echo "results in $(pwd): $NAME.exo$([ "$NP" -gt 1 ] && echo ".$NP.*"), ${NAME}_history.csv, ${NAME}_summary.json, $NAME.png"

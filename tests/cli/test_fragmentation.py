@@ -41,6 +41,7 @@ import json
 import math
 import os
 import shutil
+import subprocess
 import sys
 import tempfile
 import unittest
@@ -169,6 +170,11 @@ class Ring(unittest.TestCase):
         self.assertGreater(len(rows), 10, "the ring must break")
         summary = self.summary_of(outputs[1])
         self.assertGreater(summary["fragments"], 1, summary)
+        # the picture of the broken ring: by piece, with its legend (tools/plot_results.py)
+        plot = subprocess.run(["/usr/bin/python3", os.path.join(SRC, "tools", "plot_results.py"),
+                               os.path.join(outputs[3], "ring.exo")], capture_output=True, text=True, timeout=300)
+        self.assertEqual(plot.returncode, 0, plot.stdout + plot.stderr)
+        self.assertGreater(os.path.getsize(os.path.join(outputs[3], "ring.png")), 10000)
         for np in (2, 3):
             self.assertEqual(self.summary_of(outputs[np]), summary, f"the run summary differs between 1 and {np} ranks")
         # Restart the 3-rank run's first checkpoint on 2 ranks in a copy of its directory.

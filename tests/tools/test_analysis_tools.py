@@ -24,6 +24,7 @@ import numpy as np
 PROJECT = sys.argv.pop(1) if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
 import fracture_summary  # noqa: E402  (tools/ on PYTHONPATH: ctest sets it)
 import fragmentation_study  # noqa: E402
+import plot_results  # noqa: E402
 import scaling  # noqa: E402
 from shellfrac_tools import results_files  # noqa: E402
 
@@ -191,6 +192,37 @@ class FragmentationStudyTables(unittest.TestCase):
         self.assertNotEqual(r.returncode, 0)
         self.assertIn(other, r.stderr)
         self.assertIn("not a table written by this tool", r.stderr)
+
+
+class PictureColoursAndLabels(unittest.TestCase):
+    """plot_results.py: an id field (a fragment, a rank) gets one distinct colour per id and a legend, never a
+    continuous map under which the span and a stub come out the same colour; times and axes carry units."""
+
+    def test_ids_get_distinct_colours_and_a_legend_with_mass_and_speed(self):
+        values = np.array([3.0] * 380 + [1.0] * 10 + [79.0] * 10)  # the beam shear-off: span and two stubs
+        self.assertTrue(plot_results.is_id_field("fragment_id", values))
+        colours = plot_results.id_colours(values)
+        self.assertEqual(len(set(colours.values())), 3)
+        motion = {3: (0.0835, 221.0), 1: (0.0022, 3.91), 79: (0.0022, 3.91)}
+        labels = [h.get_label() for h in plot_results.id_legend("fragment_id", values, colours, motion, True)]
+        self.assertEqual(labels[0], "piece 3: 380 elements, 0.0835 kg at 221 m/s")  # the largest first
+        self.assertEqual(len(labels), 3)
+        many = np.arange(30.0)
+        labels = [h.get_label() for h in plot_results.id_legend("rank", many, plot_results.id_colours(many), {}, True)]
+        self.assertEqual(len(labels), plot_results.LEGEND_ENTRIES + 1)
+        self.assertEqual(labels[-1], "... 18 more (18 elements)")
+
+    def test_quantities_get_a_colour_map(self):
+        self.assertFalse(plot_results.is_id_field("eq_plastic_strain", np.array([0.0, 0.1, 0.38])))
+        self.assertFalse(plot_results.is_id_field("damage", np.linspace(0.0, 1.0, 50)))
+
+    def test_times_in_readable_units(self):
+        self.assertEqual(plot_results.time_text(9.995e-5, True), "t = 99.95 us")
+        self.assertEqual(plot_results.time_text(0.0025, True), "t = 2.5 ms")
+        self.assertEqual(plot_results.time_text(0.3, False), "t = 0.3")
+        t, label = plot_results.time_axis(np.array([0.0, 1e-4]), True)
+        self.assertEqual(label, "time [us]")
+        self.assertAlmostEqual(t[-1], 100.0)
 
 
 if __name__ == "__main__":
