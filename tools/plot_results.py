@@ -26,7 +26,7 @@ from matplotlib.patches import Patch  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 from shellfrac_tools.exodus import ExodusFile  # noqa: E402
 from shellfrac_tools.results_files import ResultsError, rank_files  # noqa: E402
-from shellfrac_tools.tables import TableError, read_table  # noqa: E402
+from shellfrac_tools.tables import TableError, pieces_at, read_table  # noqa: E402
 
 ID_FIELDS = ("fragment_id", "rank", "block")
 LEGEND_ENTRIES = 12  # ids listed by name; the rest summed up in one line
@@ -79,20 +79,11 @@ def id_colours(values):
 
 
 def fragment_motion(results, time):
-    """{fragment id: (mass, speed of its centre of mass)} from <base>_fragments.csv at the frame `time`; {} when
-    the run wrote no fragment table or none at that time."""
-    path = os.path.splitext(results)[0] + "_fragments.csv"
-    if time is None or not os.path.exists(path):
-        return {}
+    """{fragment id: (mass, speed of its centre of mass)} from <base>_fragments.csv at the frame `time`."""
     try:
-        table = read_table(path)
+        return {i: (m, v) for i, _, m, v in pieces_at(results, time)}
     except TableError as e:
         sys.exit("plot_results: %s" % e)
-    at = np.isclose(table["time"], time, rtol=1e-12, atol=0.0)
-    momentum = np.stack([table["momentum_" + c][at] for c in "xyz"], axis=1)
-    mass = table["mass"][at]
-    speed = np.linalg.norm(momentum, axis=1) / np.where(mass > 0, mass, 1.0)
-    return {int(i): (m, v) for i, m, v in zip(table["fragment_id"][at], mass, speed)}
 
 
 def id_legend(field, values, colours, motion, si):

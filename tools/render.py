@@ -3,12 +3,16 @@
 
 The deformed mid-surface (the reader adds `displ` to the coordinates) is coloured by an element field:
 `damage` (default), `eq_plastic_strain`, any other element or nodal scalar, or the categorical fields
-`fragment_id` (the largest piece grey, every other piece its own colour) and `rank` (the partition map).
-Pictures are written for the chosen times and views; `--animate` writes an animated GIF over the frames.
+`fragment_id` (the largest piece grey, the next twelve by size each its own colour, listed in a legend with
+their elements, mass and speed from `<base>_fragments.csv`; the rest summed up under the title) and `rank` (the
+partition map, a legend of the ranks). The title names the run, the field and the time. The camera frames the
+model's box as seen from the view (80 % of the frame), not ParaView's bounding sphere. Pictures are written for
+the chosen times and views; `--animate` writes an animated GIF over the frames.
 
 usage (Debian 12: tools/install-deps.sh --render installs paraview, python3-paraview, xvfb and python3-pil):
   tools/render.py RESULTS [--field damage] [--time T ...] [--view iso ...]
         [--focus X Y Z --direction DX DY DZ --distance D] [--zoom Z] [--range LO HI] [--size 1280 720]
+        [--title TEXT] [--units SI|none]
         [--animate OUT.gif --fps 8 --every 1] [-o OUT.png]
 
 RESULTS is `run.exo`, one file of a per-rank set (`run.exo.2.0`) or the set's base name (`run.exo`). Times are
@@ -66,6 +70,7 @@ from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetColorTransferFun
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # pvpython may not add the script's directory
 from shellfrac_tools.cli import fail  # noqa: E402
 from shellfrac_tools.results_files import ResultsError, rank_files  # noqa: E402
+from shellfrac_tools.tables import TableError, pieces_at  # noqa: E402
 
 VIEWS = {  # direction from the focal point towards the camera, view-up
     "iso": ((-1.0, -1.0, 0.8), (0.0, 0.0, 1.0)),
@@ -82,11 +87,13 @@ PALETTE = [(0.12, 0.47, 0.71), (1.00, 0.50, 0.05), (0.17, 0.63, 0.17), (0.84, 0.
            (0.55, 0.34, 0.29), (0.89, 0.47, 0.76), (0.74, 0.74, 0.13), (0.09, 0.75, 0.81), (0.68, 0.78, 0.91),
            (1.00, 0.73, 0.47), (0.60, 0.87, 0.54)]
 GREY = (0.78, 0.78, 0.78)
+FILL = 0.8  # the share of the frame the model fills (room for the title and the legend)
 
-# Runs inside ParaView's Programmable Filter on the merged mesh: a colour index per cell (fragment_id: 0 for the
-# piece with the most elements, 1 + a hash of the id for the others; rank: 1 + the rank modulo the palette).
-# The filter runs its script in this script's namespace and imports numpy's sum, min, max and abs there: hence
-# the function around it and builtins.* below.
+# Runs inside ParaView's Programmable Filter on the merged mesh: a colour index per cell. fragment_id: the index
+# the legend gives the piece (%(indices)s: 0 for the largest, 1, 2, ... for the next ones by size), and for a piece
+# beyond the legend 1 + a hash of its id; without a fragment table, 0 for the piece with the most elements. rank:
+# 1 + the rank modulo the palette. The filter runs its script in this script's namespace and imports numpy's sum,
+# min, max and abs there: hence the function around it and builtins.* below.
 COLOUR_INDEX = """
 def _shellfrac_colour_index():
     import numpy as np
@@ -95,15 +102,38 @@ def _shellfrac_colour_index():
     out = np.zeros(len(ids), dtype=np.int32)
     if len(ids):
         if '%(field)s' == 'fragment_id':
-            values, counts = np.unique(ids, return_counts=True)
-            main_piece = values[np.argmax(counts)]
+            indices = %(indices)s
             out = (1 + (ids * 2654435761) %% %(n)d).astype(np.int32)
-            out[ids == main_piece] = 0
+            if not indices:
+                values, counts = np.unique(ids, return_counts=True)
+                indices = {int(values[np.argmax(counts)]): 0}
+            for piece, index in indices.items():
+                out[ids == piece] = index
         else:
             out = (1 + ids %% %(n)d).astype(np.int32)
     output.CellData.append(dsa.VTKArray(out), 'colour_index')
 _shellfrac_colour_index()
 """
+
+
+def piece_legend(pieces, n_colours, si):
+    """({fragment id: colour index}, [(colour index, legend text)]) for the pieces of a frame, largest first: the
+    largest grey (index 0), the next n_colours - 1 each its own colour, the rest summed up in one line (their colours
+    repeat: 1 + a hash of the id)."""
+    indices, legend = {}, []
+    for k, (piece, elements, mass, speed) in enumerate(pieces[:n_colours]):
+        indices[piece] = k
+        motion = ", %.3g%s at %.3g%s" % (mass, " kg" if si else "", speed, " m/s" if si else "")
+        legend.append((k, "piece %d: %d elements%s%s" % (piece, elements, motion, " (largest)" if k == 0 else "")))
+    rest = pieces[n_colours:]
+    if rest:
+        legend.append((-1, "... %d more pieces, %d elements (colours repeat)" % (len(rest), builtins.sum(p[1] for p in rest))))
+    return indices, legend
+
+
+def run_name(results):
+    name = os.path.basename(results)
+    return name[:name.index(".exo")] if ".exo" in name else name
 
 
 def result_files(path):
@@ -127,7 +157,9 @@ def parse():
     p.add_argument("--zoom", type=float, default=1.0, help="move the camera towards the focus by this factor")
     p.add_argument("--range", type=float, nargs=2, help="colour range (default: damage and plastic strain 0..max)")
     p.add_argument("--size", type=int, nargs=2, default=(1280, 720))
-    p.add_argument("--title", default="", help="text in the upper left corner; the time is appended")
+    p.add_argument("--title", help="title in the upper left corner (default: the run's name); the field and the time"
+                   " are appended")
+    p.add_argument("--units", choices=("SI", "none"), default="SI", help="units of the legend (default SI)")
     p.add_argument("--time-unit", default="ms", choices=("s", "ms", "us"), help="unit of the time label")
     p.add_argument("--animate", help="write an animated GIF over the frames to this file")
     p.add_argument("--fps", type=float, default=8.0)
@@ -165,7 +197,7 @@ class Scene:
                 fail("%s has no element field '%s' (fields: %s); add it to Output->Fields"
                      % (args.results, field, ", ".join(cell_fields) or "none"))
             self.source = ProgrammableFilter(Input=self.merged)
-            self.source.Script = COLOUR_INDEX % {"field": field, "n": len(PALETTE)}
+            self.source.Script = COLOUR_INDEX % {"field": field, "n": len(PALETTE), "indices": "{}"}
             self.colour_array = ("CELLS", "colour_index")
         else:
             self.source = self.merged
@@ -189,11 +221,15 @@ class Scene:
         ColorBy(self.display, self.colour_array)
         lut = GetColorTransferFunction(self.colour_array[1])
         if self.categorical:
-            colours = [GREY] + PALETTE
             lut.InterpretValuesAsCategories = 1
-            lut.Annotations = [text for i in range(len(colours)) for text in (str(i), "")]
-            lut.IndexedColors = [c for rgb in colours for c in rgb]
-            self.display.SetScalarBarVisibility(self.view, False)
+            self.legend([(i, "") for i in range(len(PALETTE) + 1)])
+            bar = GetScalarBar(lut, self.view)
+            bar.TitleColor = bar.LabelColor = [0.0, 0.0, 0.0]
+            bar.Title = "pieces" if self.args.field == "fragment_id" else "ranks"
+            bar.ComponentTitle = ""
+            bar.WindowLocation = "Upper Right Corner"
+            bar.ScalarBarLength = 0.3
+            bar.LabelFontSize = 13
         else:
             if self.args.field in ("damage", "eq_plastic_strain"):  # intact skin light grey, then yellow to dark red
                 lut.RGBPoints = [0.0, 0.86, 0.86, 0.86, 0.02, 1.0, 0.87, 0.35, 0.5, 0.93, 0.42, 0.1, 1.0, 0.55, 0.0,
@@ -208,8 +244,37 @@ class Scene:
             bar.ComponentTitle = ""
         self.lut = lut
 
+    def legend(self, entries):
+        """The categorical colours with their legend: [(colour index, text)], index 0 grey, then the palette; an
+        index below 0 a line of text with no colour. Shown when some entry has a text."""
+        colours = [GREY] + PALETTE
+        shown = [(i, text) for i, text in entries if i >= 0]
+        lut = GetColorTransferFunction(self.colour_array[1])
+        lut.Annotations = [x for i, text in shown for x in (str(i), text)]
+        lut.IndexedColors = [c for i, _ in shown for c in colours[i]]
+        self.display.SetScalarBarVisibility(self.view, any(text for _, text in shown))
+        self.legend_note = "".join("\n" + text for i, text in entries if i < 0)
+
+    def categories_at(self, t):
+        """Colours and legend of the categorical field at frame t: pieces by size from the fragment table, or the
+        ranks of the set."""
+        if self.args.field == "rank":
+            ranks = len(rank_files(self.args.results))
+            self.legend([(1 + r % len(PALETTE), "rank %d" % r if ranks <= len(PALETTE) else "ranks = %d mod %d"
+                          % (r, len(PALETTE))) for r in range(builtins.min(ranks, len(PALETTE)))])
+            return
+        try:
+            pieces = pieces_at(self.args.results, t)
+        except TableError as e:
+            fail(str(e))
+        indices, entries = piece_legend(pieces, len(PALETTE) + 1, self.args.units == "SI")
+        self.source.Script = COLOUR_INDEX % {"field": "fragment_id", "n": len(PALETTE), "indices": repr(indices)}
+        self.legend(entries or [(0, "")])
+
     def go_to(self, t):
         self.view.ViewTime = t
+        if self.categorical:
+            self.categories_at(t)
         self.source.UpdatePipeline(t)
         if not self.categorical:
             if self.args.range:
@@ -225,8 +290,9 @@ class Scene:
                 if self.args.field in ("damage", "eq_plastic_strain"):
                     lo, hi = 0.0, builtins.max(hi, 1e-12 if self.args.field == "eq_plastic_strain" else 1.0)
             self.lut.RescaleTransferFunction(lo, builtins.max(hi, lo + 1e-30))
-        self.label.Text = (self.args.title + "  " if self.args.title else "") + \
-            frame_time_label(t, self.args.time_unit)
+        title = self.args.title if self.args.title is not None else run_name(self.args.results)
+        self.label.Text = "%s: %s at %s%s" % (title, self.args.field, frame_time_label(t, self.args.time_unit),
+                                              getattr(self, "legend_note", ""))
 
     def aim(self, view_name):
         a = self.args
@@ -247,12 +313,32 @@ class Scene:
         if a.distance:
             camera.SetPosition([f + a.distance * d for f, d in zip(focus, direction)])
         else:
-            position = camera.GetPosition()
-            fit = math.sqrt(builtins.sum((p - f) ** 2 for p, f in zip(position, camera.GetFocalPoint())))
+            fit = self.fitting_distance(focus, direction, up, camera.GetViewAngle())
             camera.SetPosition([f + fit * d for f, d in zip(focus, direction)])
         if a.zoom != 1.0:
             camera.Dolly(a.zoom)
         self.view.CameraParallelProjection = 0
+
+    def fitting_distance(self, focus, direction, up, view_angle):
+        """The camera distance at which the model's box, seen from `direction`, fills FILL of the frame's width or
+        height (whichever binds): the box corners projected on the view plane, plus their depth towards the camera.
+        ParaView's own fit takes the bounding sphere, which leaves an elongated model in half the frame."""
+        b = self.source.GetDataInformation().GetBounds()
+        corners = [(x, y, z) for x in b[0:2] for y in b[2:4] for z in b[4:6]]
+        dot = lambda a, c: builtins.sum(p * q for p, q in zip(a, c))  # noqa: E731
+        along = dot(up, direction)
+        up = [u - along * d for u, d in zip(up, direction)]
+        norm = math.sqrt(dot(up, up)) or 1.0
+        up = [u / norm for u in up]
+        right = [up[1] * direction[2] - up[2] * direction[1], up[2] * direction[0] - up[0] * direction[2],
+                 up[0] * direction[1] - up[1] * direction[0]]
+        rel = [[c - f for c, f in zip(corner, focus)] for corner in corners]
+        half_width = builtins.max(builtins.abs(dot(r, right)) for r in rel)
+        half_height = builtins.max(builtins.abs(dot(r, up)) for r in rel)
+        depth = builtins.max(dot(r, direction) for r in rel)
+        aspect = self.args.size[0] / float(self.args.size[1])
+        tangent = math.tan(math.radians(view_angle) / 2)
+        return builtins.max(half_height, half_width / aspect, 1e-30) / (FILL * tangent) + builtins.max(depth, 0.0)
 
     def save(self, path):
         Render(self.view)

@@ -212,6 +212,22 @@ class PictureColoursAndLabels(unittest.TestCase):
         self.assertEqual(len(labels), plot_results.LEGEND_ENTRIES + 1)
         self.assertEqual(labels[-1], "... 18 more (18 elements)")
 
+    def test_pieces_of_a_frame_largest_first_with_their_speed(self):
+        import tempfile
+        from shellfrac_tools import tables
+        work = tempfile.mkdtemp(prefix="shellfrac_pieces_")
+        with open(os.path.join(work, "run_fragments.csv"), "w") as f:
+            f.write("time,fragment_id,elements,mass,com_x,com_y,com_z,momentum_x,momentum_y,momentum_z\n"
+                    "1e-05,1,10,0.5,0,0,0,1,0,0\n"
+                    "2e-05,1,10,0.5,0,0,0,3,4,0\n2e-05,3,380,2.0,0,0,0,0,0,-442\n2e-05,79,10,0.5,0,0,0,0,0,1\n")
+        for name in ("run.exo", "run.exo.2.1", "run"):
+            self.assertEqual(tables.fragments_path(os.path.join(work, name)), os.path.join(work, "run_fragments.csv"))
+        pieces = tables.pieces_at(os.path.join(work, "run.exo"), 2e-05)
+        self.assertEqual([p[:3] for p in pieces], [(3, 380, 2.0), (1, 10, 0.5), (79, 10, 0.5)])  # ties: lower id
+        self.assertEqual([p[3] for p in pieces], [221.0, 10.0, 2.0])  # |momentum| / mass
+        self.assertEqual(tables.pieces_at(os.path.join(work, "run.exo"), 3e-05), [])
+        self.assertEqual(tables.pieces_at(os.path.join(work, "other.exo"), 2e-05), [])
+
     def test_quantities_get_a_colour_map(self):
         self.assertFalse(plot_results.is_id_field("eq_plastic_strain", np.array([0.0, 0.1, 0.38])))
         self.assertFalse(plot_results.is_id_field("damage", np.linspace(0.0, 1.0, 50)))

@@ -46,3 +46,32 @@ def column(table, name, path):
     if name not in table:
         raise TableError("%s: no column '%s'; available columns: %s" % (path, name, ", ".join(table)))
     return table[name]
+
+
+def fragments_path(results):
+    """`<base>_fragments.csv` of a results name (`<base>.exo`, a per-rank file `<base>.exo.<np>.<rank>` or `<base>`)."""
+    base = results
+    if ".exo." in os.path.basename(base):
+        base = base[:base.rindex(".exo.")]
+    elif base.endswith(".exo"):
+        base = base[:-len(".exo")]
+    return base + "_fragments.csv"
+
+
+def pieces_at(results, time):
+    """The pieces of the fragment table at the frame `time`, largest first (most elements, then the lower id):
+    [(fragment id, elements, mass, speed of the centre of mass)]; [] when the run wrote no fragment table or no
+    rows at that time. A TableError for a table that cannot be read."""
+    path = fragments_path(results)
+    if time is None or not os.path.exists(path):
+        return []
+    table = read_table(path)
+    for name in ("time", "fragment_id", "elements", "mass", "momentum_x", "momentum_y", "momentum_z"):
+        column(table, name, path)
+    at = np.isclose(table["time"], time, rtol=1e-12, atol=0.0)
+    mass = table["mass"][at]
+    momentum = np.stack([table["momentum_" + c][at] for c in "xyz"], axis=1)
+    speed = np.linalg.norm(momentum, axis=1) / np.where(mass > 0, mass, 1.0)
+    pieces = [(int(i), int(n), float(m), float(v))
+              for i, n, m, v in zip(table["fragment_id"][at], table["elements"][at], mass, speed)]
+    return sorted(pieces, key=lambda p: (-p[1], p[0]))
