@@ -4,6 +4,7 @@
 #include <Teuchos_OrdinalTraits.hpp>
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
@@ -36,6 +37,85 @@ Teuchos::ArrayView<const tpetra_go> view_of(const std::vector<tpetra_go>& v, std
                                              static_cast<Teuchos::ArrayView<const tpetra_go>::size_type>(n));
 }
 
+/// 1. Checks the inputs on every rank, then agrees (a rank given different data must not hang the others); then
+/// checks that every rank was given the same mesh size and partition.
+void check_inputs(const mesh::EdgeTopology& topo, const std::vector<int>& part, int npe, GlobalId ne, int num_ranks,
+                  MPI_Comm comm) {
+  parallel::on_all_then_agree(
+      [&] {
+        SHELLFRAC_REQUIRE(npe == num_nodes_tri3 || npe == num_nodes_tri6,
+                          "DistributedMesh: nodes_per_element must be 3 or 6, got " << npe);
+        SHELLFRAC_REQUIRE(static_cast<GlobalId>(part.size()) == ne,
+                          "DistributedMesh: the partition has " << part.size() << " entries for " << ne << " elements");
+        SHELLFRAC_REQUIRE(static_cast<GlobalId>(topo.element_edges.size()) == ne &&
+                              static_cast<GlobalId>(topo.neighbor.size()) == ne &&
+                              static_cast<GlobalId>(topo.element_interface.size()) == ne,
+                          "DistributedMesh: the edge topology does not match the mesh (" << ne << " elements)");
+        for (GlobalId e = 0; e < ne; ++e)
+          SHELLFRAC_REQUIRE(part[e] >= 0 && part[e] < num_ranks, "DistributedMesh: element " << e << " has part "
+                                                                      << part[e] << ", not a rank in [0, "
+                                                                      << num_ranks << ")");
+      },
+      comm);
+  unsigned long long h[2] = {hash_partition(part), 0}, lo[2] = {0, 0}, hi[2] = {0, 0};
+  h[1] = static_cast<unsigned long long>(ne);
+  MPI_Allreduce(h, lo, 2, MPI_UNSIGNED_LONG_LONG, MPI_MIN, comm);
+  MPI_Allreduce(h, hi, 2, MPI_UNSIGNED_LONG_LONG, MPI_MAX, comm);
+  SHELLFRAC_REQUIRE(lo[0] == hi[0] && lo[1] == hi[1],
+                    "DistributedMesh: the mesh or the partition differs between ranks (they must be identical)");
+}
+
+/// 2. Owned elements (ascending gid), then the ghost layer: elements across an interface from an owned
+///    element and owned elsewhere (ascending gid, unique). Sets num_owned.
+std::vector<GlobalId> overlap_elements(const mesh::EdgeTopology& topo, const std::vector<int>& part, int rank,
+                                       LocalId& num_owned) {
+  std::vector<GlobalId> element_gid;
+  const GlobalId ne = static_cast<GlobalId>(part.size());
+  for (GlobalId e = 0; e < ne; ++e)
+    if (part[e] == rank) element_gid.push_back(e);
+  num_owned = static_cast<LocalId>(element_gid.size());
+  std::vector<GlobalId> ghosts;
+  for (const auto& f : topo.interfaces) {
+    const GlobalId a = f.minus.element, b = f.plus.element;
+    if (part[a] == rank && part[b] != rank) ghosts.push_back(b);
+    if (part[b] == rank && part[a] != rank) ghosts.push_back(a);
+  }
+  std::sort(ghosts.begin(), ghosts.end());
+  ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
+  element_gid.insert(element_gid.end(), ghosts.begin(), ghosts.end());
+  return element_gid;
+}
+
+/// 6. Tpetra maps and transfers over the overlap elements `element_gid` (collective, also on a rank without
+///    elements).
+std::unique_ptr<ElementMaps> make_maps(const std::vector<GlobalId>& element_gid, LocalId num_owned, GlobalId ne,
+                                       MPI_Comm comm) {
+  auto tcomm = Teuchos::rcp(new Teuchos::MpiComm<int>(comm));
+  const std::vector<tpetra_go> gids(element_gid.begin(), element_gid.end());
+  auto maps = std::make_unique<ElementMaps>();
+  maps->owned = Teuchos::rcp(new map_type(static_cast<Tpetra::global_size_t>(ne),
+                                           view_of(gids, 0, static_cast<std::size_t>(num_owned)), tpetra_go(0), tcomm));
+  maps->overlap = Teuchos::rcp(new map_type(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                             view_of(gids, 0, gids.size()), tpetra_go(0), tcomm));
+  maps->importer = Teuchos::rcp(new import_type(maps->owned, maps->overlap));
+  const std::size_t nghost = gids.size() - static_cast<std::size_t>(num_owned);
+  maps->ghosts = Teuchos::rcp(new map_type(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                            view_of(gids, static_cast<std::size_t>(num_owned), nghost), tpetra_go(0),
+                                            tcomm));
+  maps->ghost_importer = Teuchos::rcp(new import_type(maps->owned, maps->ghosts));
+  const auto sent = maps->ghost_importer->getExportLIDs();
+  maps->send_rows.assign(sent.begin(), sent.end());
+  std::sort(maps->send_rows.begin(), maps->send_rows.end());
+  maps->send_rows.erase(std::unique(maps->send_rows.begin(), maps->send_rows.end()), maps->send_rows.end());
+  std::vector<tpetra_go> send_gids;
+  send_gids.reserve(maps->send_rows.size());
+  for (const LocalId le : maps->send_rows) send_gids.push_back(gids[std::size_t(le)]);
+  maps->senders = Teuchos::rcp(new map_type(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                             view_of(send_gids, 0, send_gids.size()), tpetra_go(0), tcomm));
+  maps->send_importer = Teuchos::rcp(new import_type(maps->senders, maps->ghosts));
+  return maps;
+}
+
 }  // namespace
 
 DistributedMesh::DistributedMesh(const mesh::SerialMesh& mesh, const mesh::EdgeTopology& topo,
@@ -46,47 +126,8 @@ DistributedMesh::DistributedMesh(const mesh::SerialMesh& mesh, const mesh::EdgeT
   npe_ = mesh.nodes_per_element;
   num_global_elements_ = mesh.num_elements();
   const GlobalId ne = num_global_elements_;
-
-  // 1. Check the inputs on every rank, then agree (a rank given different data must not hang the others).
-  parallel::on_all_then_agree(
-      [&] {
-        SHELLFRAC_REQUIRE(npe_ == num_nodes_tri3 || npe_ == num_nodes_tri6,
-                          "DistributedMesh: nodes_per_element must be 3 or 6, got " << npe_);
-        SHELLFRAC_REQUIRE(static_cast<GlobalId>(part.size()) == ne,
-                          "DistributedMesh: the partition has " << part.size() << " entries for " << ne << " elements");
-        SHELLFRAC_REQUIRE(static_cast<GlobalId>(topo.element_edges.size()) == ne &&
-                              static_cast<GlobalId>(topo.neighbor.size()) == ne &&
-                              static_cast<GlobalId>(topo.element_interface.size()) == ne,
-                          "DistributedMesh: the edge topology does not match the mesh (" << ne << " elements)");
-        for (GlobalId e = 0; e < ne; ++e)
-          SHELLFRAC_REQUIRE(part[e] >= 0 && part[e] < num_ranks_, "DistributedMesh: element " << e << " has part "
-                                                                      << part[e] << ", not a rank in [0, "
-                                                                      << num_ranks_ << ")");
-      },
-      comm_);
-  {
-    unsigned long long h[2] = {hash_partition(part), 0}, lo[2] = {0, 0}, hi[2] = {0, 0};
-    h[1] = static_cast<unsigned long long>(ne);
-    MPI_Allreduce(h, lo, 2, MPI_UNSIGNED_LONG_LONG, MPI_MIN, comm_);
-    MPI_Allreduce(h, hi, 2, MPI_UNSIGNED_LONG_LONG, MPI_MAX, comm_);
-    SHELLFRAC_REQUIRE(lo[0] == hi[0] && lo[1] == hi[1],
-                      "DistributedMesh: the mesh or the partition differs between ranks (they must be identical)");
-  }
-
-  // 2. Owned elements (ascending gid), then the ghost layer: elements across an interface from an owned
-  //    element and owned elsewhere (ascending gid, unique).
-  for (GlobalId e = 0; e < ne; ++e)
-    if (part[e] == rank_) element_gid_.push_back(e);
-  num_owned_ = static_cast<LocalId>(element_gid_.size());
-  std::vector<GlobalId> ghosts;
-  for (const auto& f : topo.interfaces) {
-    const GlobalId a = f.minus.element, b = f.plus.element;
-    if (part[a] == rank_ && part[b] != rank_) ghosts.push_back(b);
-    if (part[b] == rank_ && part[a] != rank_) ghosts.push_back(a);
-  }
-  std::sort(ghosts.begin(), ghosts.end());
-  ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
-  element_gid_.insert(element_gid_.end(), ghosts.begin(), ghosts.end());
+  check_inputs(topo, part, npe_, ne, num_ranks_, comm_);
+  element_gid_ = overlap_elements(topo, part, rank_, num_owned_);
   const LocalId nov = num_overlap();
 
   // 3. Per-element data of the overlap: owner, block, DG nodes (coordinates, mesh node), directors.
@@ -149,30 +190,7 @@ DistributedMesh::DistributedMesh(const mesh::SerialMesh& mesh, const mesh::EdgeT
     boundary_.push_back(std::move(lb));
   }
 
-  // 6. Tpetra maps and transfers (collective, also on a rank without elements).
-  auto tcomm = Teuchos::rcp(new Teuchos::MpiComm<int>(comm_));
-  const std::vector<tpetra_go> gids(element_gid_.begin(), element_gid_.end());
-  maps_ = std::make_unique<ElementMaps>();
-  maps_->owned = Teuchos::rcp(new map_type(static_cast<Tpetra::global_size_t>(ne),
-                                           view_of(gids, 0, static_cast<std::size_t>(num_owned_)), tpetra_go(0), tcomm));
-  maps_->overlap = Teuchos::rcp(new map_type(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
-                                             view_of(gids, 0, gids.size()), tpetra_go(0), tcomm));
-  maps_->importer = Teuchos::rcp(new import_type(maps_->owned, maps_->overlap));
-  const std::size_t nghost = gids.size() - static_cast<std::size_t>(num_owned_);
-  maps_->ghosts = Teuchos::rcp(new map_type(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
-                                            view_of(gids, static_cast<std::size_t>(num_owned_), nghost), tpetra_go(0),
-                                            tcomm));
-  maps_->ghost_importer = Teuchos::rcp(new import_type(maps_->owned, maps_->ghosts));
-  const auto sent = maps_->ghost_importer->getExportLIDs();
-  maps_->send_rows.assign(sent.begin(), sent.end());
-  std::sort(maps_->send_rows.begin(), maps_->send_rows.end());
-  maps_->send_rows.erase(std::unique(maps_->send_rows.begin(), maps_->send_rows.end()), maps_->send_rows.end());
-  std::vector<tpetra_go> send_gids;
-  send_gids.reserve(maps_->send_rows.size());
-  for (const LocalId le : maps_->send_rows) send_gids.push_back(gids[std::size_t(le)]);
-  maps_->senders = Teuchos::rcp(new map_type(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
-                                             view_of(send_gids, 0, send_gids.size()), tpetra_go(0), tcomm));
-  maps_->send_importer = Teuchos::rcp(new import_type(maps_->senders, maps_->ghosts));
+  maps_ = make_maps(element_gid_, num_owned_, ne, comm_);
 }
 
 DistributedMesh::~DistributedMesh() = default;
