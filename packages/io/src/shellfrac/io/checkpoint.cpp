@@ -197,95 +197,203 @@ const double* CheckpointTable::row(GlobalId id) const {
   return values.data() + (it - ids.begin()) * width;
 }
 
+namespace {
+
+/// The first error met on rank 0 while writing, raised on every rank at the end (the other ranks go on serving
+/// rows so that nobody hangs).
+struct RootError {
+  int me = 0;
+  int kind = 0;  ///< 0 none, 1 InputError, 2 Error, 3 OutputError
+  std::string message;
+
+  /// Runs fn on rank 0 while no error has been met, keeping the first error.
+  template <class Fn>
+  void attempt(const Fn& fn) {
+    if (me != 0 || kind != 0) return;
+    try {
+      fn();
+    } catch (const OutputError& e) {
+      kind = 3, message = e.what();
+    } catch (const InputError& e) {
+      kind = 1, message = e.what();
+    } catch (const std::exception& e) {
+      kind = 2, message = e.what();
+    }
+  }
+  /// Collective: throws rank 0's error, of its kind, on every rank.
+  void raise_everywhere(MPI_Comm comm) {
+    MPI_Bcast(&kind, 1, MPI_INT, 0, comm);
+    if (kind == 0) return;
+    parallel::broadcast(message, 0, comm);
+    if (kind == 1) throw InputError(message);
+    if (kind == 3) throw OutputError(message);
+    throw Error(message);
+  }
+};
+
+/// Rank 0's part of writing table `name`: gathers every rank's ids, merges them, then writes block by block with
+/// the rows asked of each rank.
+void write_table_on_root(const std::string& name, const LocalRows& mine, int width, CheckpointFileWriter* writer,
+                         RootError& failure, MPI_Comm comm) {
+  const int np = parallel::size(comm);
+  std::vector<std::vector<GlobalId>> ids(static_cast<std::size_t>(np));
+  std::vector<int> widths(static_cast<std::size_t>(np), mine.width);
+  ids[0] = mine.ids;
+  for (int r = 1; r < np; ++r) {
+    widths[std::size_t(r)] = static_cast<int>(receive_vector<std::int64_t>(r, comm).at(0));
+    ids[std::size_t(r)] = receive_vector<std::int64_t>(r, comm);
+  }
+  std::optional<RowMerge> merge;
+  failure.attempt([&] {
+    for (int r = 0; r < np; ++r) {
+      const auto& theirs = ids[std::size_t(r)];
+      SHELLFRAC_REQUIRE(theirs.empty() || widths[std::size_t(r)] == width,
+                        "checkpoint table " << name << ": rows of width " << widths[std::size_t(r)] << " from rank "
+                                            << r << ", " << width << " from another");
+      SHELLFRAC_REQUIRE(std::is_sorted(theirs.begin(), theirs.end()),
+                        "checkpoint table " << name << ": the ids of rank " << r << " are not sorted");
+    }
+    merge.emplace(ids);
+    writer->begin_table(name, width, merge->take_sorted_ids());
+  });
+  std::vector<double> block;
+  std::vector<std::size_t> first(static_cast<std::size_t>(np)), count(static_cast<std::size_t>(np));
+  std::vector<std::vector<double>> rows(static_cast<std::size_t>(np));
+  for (std::size_t done = 0; failure.kind == 0 && merge && done < merge->size(); done += checkpoint_rows_per_block) {
+    const std::size_t n = std::min(checkpoint_rows_per_block, merge->size() - done);
+    const auto& sources = merge->next_block(n, first, count);  // (rank, row) of each row of the block
+    for (int r = 0; r < np; ++r) {
+      auto& buffer = rows[std::size_t(r)];
+      buffer.resize(count[std::size_t(r)] * std::size_t(width));
+      if (count[std::size_t(r)] == 0) continue;
+      if (r == 0)
+        mine.rows(first[0], count[0], buffer.data());
+      else
+        buffer = request_rows(r, first[std::size_t(r)], count[std::size_t(r)], comm);
+    }
+    failure.attempt([&] {
+      block.resize(n * std::size_t(width));
+      for (std::size_t i = 0; i < n; ++i) {
+        const auto [r, row] = sources[i];
+        const auto& buffer = rows[std::size_t(r)];
+        SHELLFRAC_REQUIRE(buffer.size() == count[std::size_t(r)] * std::size_t(width),
+                          "checkpoint table " << name << ": rank " << r << " sent " << buffer.size() << " values");
+        std::copy_n(buffer.data() + (row - first[std::size_t(r)]) * std::size_t(width), width,
+                    block.data() + i * std::size_t(width));
+      }
+      writer->write_rows(block.data(), n);
+    });
+  }
+  for (int r = 1; r < np; ++r) end_row_requests(r, comm);
+}
+
+/// Collective: rank 0 opens the file; every rank gets its scalars, strings and table names.
+std::unique_ptr<CheckpointFileReader> open_and_share_header(const std::string& path, CheckpointData& d,
+                                                            std::vector<std::string>& names, MPI_Comm comm) {
+  const int me = parallel::rank(comm);
+  std::unique_ptr<CheckpointFileReader> reader;
+  parallel::on_root_then_agree(
+      [&] {
+        reader = std::make_unique<CheckpointFileReader>(path);
+        d.scalars = reader->header().scalars, d.strings = reader->header().strings;
+        names = reader->table_names();
+      },
+      0, comm);
+  parallel::ByteWriter w;
+  if (me == 0) {
+    w = serialize_header(d, names.size());
+    for (const auto& n : names) w.put_string(n);
+  }
+  parallel::broadcast(w.buffer(), 0, comm);
+  if (me != 0) {
+    parallel::ByteReader r(w.buffer());
+    for (auto n = deserialize_header(r, d); n > 0; --n) names.push_back(r.get_string());
+  }
+  return reader;
+}
+
+/// Collective: the ids of table `name` each rank asks for (sorted, unique; gathered on rank 0, empty elsewhere);
+/// `whole` when nobody names the table (it then goes whole to every rank).
+std::vector<std::vector<GlobalId>> gather_asked_ids(const std::string& path, const std::string& name,
+                                                    const WantedRows& wanted, bool& whole, MPI_Comm comm) {
+  const int me = parallel::rank(comm), np = parallel::size(comm);
+  const std::vector<GlobalId>* ask = wanted(name);
+  whole = ask == nullptr;
+  std::vector<GlobalId> mine_asked;
+  if (!whole) {
+    mine_asked = *ask;
+    std::sort(mine_asked.begin(), mine_asked.end());
+    mine_asked.erase(std::unique(mine_asked.begin(), mine_asked.end()), mine_asked.end());
+  }
+  SHELLFRAC_REQUIRE(!(parallel::any(whole, comm) && parallel::any(!whole, comm)),
+                    "checkpoint " << path << ": table " << name << " is asked for by some ranks only");
+  std::vector<std::vector<GlobalId>> asked(static_cast<std::size_t>(np));
+  if (whole) return asked;
+  if (me == 0) {
+    asked[0] = std::move(mine_asked);
+    for (int r = 1; r < np; ++r) asked[std::size_t(r)] = receive_vector<std::int64_t>(r, comm);
+  } else {
+    send_vector(mine_asked, 0, comm);
+  }
+  return asked;
+}
+
+/// Rank 0: sends each rank its asked rows of one block (ids [begin, end) with values `block`) and returns its own.
+/// `cursor` is each rank's position in its asked ids (both sorted: one pass over each).
+CheckpointTable share_asked_rows(std::vector<GlobalId>::const_iterator begin, std::vector<GlobalId>::const_iterator end,
+                                 const std::vector<double>& block, std::size_t width,
+                                 const std::vector<std::vector<GlobalId>>& asked, std::vector<std::size_t>& cursor,
+                                 MPI_Comm comm) {
+  CheckpointTable own;
+  own.width = static_cast<int>(width);
+  for (int r = 0; r < static_cast<int>(asked.size()); ++r) {
+    const auto& want = asked[std::size_t(r)];
+    std::size_t& c = cursor[std::size_t(r)];
+    std::vector<GlobalId> out_ids;
+    std::vector<double> out_values;
+    auto at = begin;
+    for (; c < want.size() && want[c] <= *(end - 1); ++c) {
+      at = std::lower_bound(at, end, want[c]);
+      if (at == end || *at != want[c]) continue;  // not in the file
+      const std::size_t row = std::size_t(at - begin);
+      out_ids.push_back(want[c]);
+      out_values.insert(out_values.end(), block.begin() + std::ptrdiff_t(row * width),
+                        block.begin() + std::ptrdiff_t((row + 1) * width));
+    }
+    if (r == 0)
+      own.ids = std::move(out_ids), own.values = std::move(out_values);
+    else
+      send_vector(out_ids, r, comm), send_vector(out_values, r, comm);
+  }
+  return own;
+}
+
+}  // namespace
+
 // Rank 0 writes, one table at a time and a block of checkpoint_rows_per_block rows at a time: it gathers every rank's ids of the
 // table, merges them (sorted, a row given by two ranks taken from the lower), writes them, then asks each rank for
 // the rows of each block and writes the block. No rank ever holds a table: rank 0 holds the ids and one block,
 // the others build the rows of a block when asked. An error on rank 0 is raised on every rank after the last table.
 void write_checkpoint(const std::string& path, const CheckpointData& local, MPI_Comm comm) {
-  const int me = parallel::rank(comm), np = parallel::size(comm);
+  const int me = parallel::rank(comm);
   const auto names = agreed_table_names(local, comm);
-  std::string error;
-  int kind = 0;  // of the first error on rank 0: 1 InputError, 2 Error, 3 OutputError
-  const auto attempt = [&](const auto& fn) {
-    if (me != 0 || kind != 0) return;
-    try {
-      fn();
-    } catch (const OutputError& e) {
-      kind = 3, error = e.what();
-    } catch (const InputError& e) {
-      kind = 1, error = e.what();
-    } catch (const std::exception& e) {
-      kind = 2, error = e.what();
-    }
-  };
+  RootError failure;
+  failure.me = me;
   std::unique_ptr<CheckpointFileWriter> writer;
-  attempt([&] { writer = std::make_unique<CheckpointFileWriter>(path, local, names.size()); });
+  failure.attempt([&] { writer = std::make_unique<CheckpointFileWriter>(path, local, names.size()); });
   for (const auto& name : names) {
     const LocalRows mine = local_rows(local, name);
     const int width = static_cast<int>(parallel::max(double(mine.width), comm));
-    if (me != 0) {
-      send_vector(std::vector<std::int64_t>{mine.width}, 0, comm), send_vector(mine.ids, 0, comm);
-      serve_row_requests(mine, comm);
+    if (me == 0) {
+      write_table_on_root(name, mine, width, writer.get(), failure, comm);
       continue;
     }
-    std::vector<std::vector<GlobalId>> ids(static_cast<std::size_t>(np));
-    std::vector<int> widths(static_cast<std::size_t>(np), mine.width);
-    ids[0] = mine.ids;
-    for (int r = 1; r < np; ++r) {
-      widths[std::size_t(r)] = static_cast<int>(receive_vector<std::int64_t>(r, comm).at(0));
-      ids[std::size_t(r)] = receive_vector<std::int64_t>(r, comm);
-    }
-    std::optional<RowMerge> merge;
-    attempt([&] {
-      for (int r = 0; r < np; ++r) {
-        const auto& theirs = ids[std::size_t(r)];
-        SHELLFRAC_REQUIRE(theirs.empty() || widths[std::size_t(r)] == width,
-                          "checkpoint table " << name << ": rows of width " << widths[std::size_t(r)] << " from rank "
-                                              << r << ", " << width << " from another");
-        SHELLFRAC_REQUIRE(std::is_sorted(theirs.begin(), theirs.end()),
-                          "checkpoint table " << name << ": the ids of rank " << r << " are not sorted");
-      }
-      merge.emplace(ids);
-      writer->begin_table(name, width, merge->take_sorted_ids());
-    });
-    std::vector<double> block;
-    std::vector<std::size_t> first(static_cast<std::size_t>(np)), count(static_cast<std::size_t>(np));
-    std::vector<std::vector<double>> rows(static_cast<std::size_t>(np));
-    for (std::size_t done = 0; kind == 0 && merge && done < merge->size(); done += checkpoint_rows_per_block) {
-      const std::size_t n = std::min(checkpoint_rows_per_block, merge->size() - done);
-      const auto& sources = merge->next_block(n, first, count);  // (rank, row) of each row of the block
-      for (int r = 0; r < np; ++r) {
-        auto& buffer = rows[std::size_t(r)];
-        buffer.resize(count[std::size_t(r)] * std::size_t(width));
-        if (count[std::size_t(r)] == 0) continue;
-        if (r == 0)
-          mine.rows(first[0], count[0], buffer.data());
-        else
-          buffer = request_rows(r, first[std::size_t(r)], count[std::size_t(r)], comm);
-      }
-      attempt([&] {
-        block.resize(n * std::size_t(width));
-        for (std::size_t i = 0; i < n; ++i) {
-          const auto [r, row] = sources[i];
-          const auto& buffer = rows[std::size_t(r)];
-          SHELLFRAC_REQUIRE(buffer.size() == count[std::size_t(r)] * std::size_t(width),
-                            "checkpoint table " << name << ": rank " << r << " sent " << buffer.size() << " values");
-          std::copy_n(buffer.data() + (row - first[std::size_t(r)]) * std::size_t(width), width,
-                      block.data() + i * std::size_t(width));
-        }
-        writer->write_rows(block.data(), n);
-      });
-    }
-    for (int r = 1; r < np; ++r) end_row_requests(r, comm);
+    send_vector(std::vector<std::int64_t>{mine.width}, 0, comm), send_vector(mine.ids, 0, comm);
+    serve_row_requests(mine, comm);
   }
-  attempt([&] { writer->finish(); });
+  failure.attempt([&] { writer->finish(); });
   writer.reset();
-  MPI_Bcast(&kind, 1, MPI_INT, 0, comm);
-  if (kind == 0) return;
-  parallel::broadcast(error, 0, comm);
-  if (kind == 1) throw InputError(error);
-  if (kind == 3) throw OutputError(error);
-  throw Error(error);
+  failure.raise_everywhere(comm);
 }
 
 // Rank 0 reads one table at a time, a block of checkpoint_rows_per_block rows at a time, and sends every rank the rows of each
@@ -295,50 +403,13 @@ void read_checkpoint(const std::string& path, MPI_Comm comm, const WantedRows& w
                      const std::function<void(const CheckpointData& header)>& header,
                      const std::function<void(const std::string& name, const CheckpointTable& rows)>& table) {
   const int me = parallel::rank(comm), np = parallel::size(comm);
-  std::unique_ptr<CheckpointFileReader> reader;
   CheckpointData d;
   std::vector<std::string> names;
-  parallel::on_root_then_agree(
-      [&] {
-        reader = std::make_unique<CheckpointFileReader>(path);
-        d.scalars = reader->header().scalars, d.strings = reader->header().strings;
-        names = reader->table_names();
-      },
-      0, comm);
-  {  // scalars, strings and the table names to every rank
-    parallel::ByteWriter w;
-    if (me == 0) {
-      w = serialize_header(d, names.size());
-      for (const auto& n : names) w.put_string(n);
-    }
-    parallel::broadcast(w.buffer(), 0, comm);
-    if (me != 0) {
-      parallel::ByteReader r(w.buffer());
-      for (auto n = deserialize_header(r, d); n > 0; --n) names.push_back(r.get_string());
-    }
-  }
+  const std::unique_ptr<CheckpointFileReader> reader = open_and_share_header(path, d, names, comm);
   header(d);
   for (const auto& name : names) {
-    // The ids each rank asks for, sorted and unique; a table nobody names goes whole to every rank.
-    const std::vector<GlobalId>* ask = wanted(name);
-    const bool whole = ask == nullptr;
-    std::vector<GlobalId> mine_asked;
-    if (!whole) {
-      mine_asked = *ask;
-      std::sort(mine_asked.begin(), mine_asked.end());
-      mine_asked.erase(std::unique(mine_asked.begin(), mine_asked.end()), mine_asked.end());
-    }
-    SHELLFRAC_REQUIRE(!(parallel::any(whole, comm) && parallel::any(!whole, comm)),
-                      "checkpoint " << path << ": table " << name << " is asked for by some ranks only");
-    std::vector<std::vector<GlobalId>> asked(static_cast<std::size_t>(np));
-    if (!whole) {
-      if (me == 0) {
-        asked[0] = std::move(mine_asked);
-        for (int r = 1; r < np; ++r) asked[std::size_t(r)] = receive_vector<std::int64_t>(r, comm);
-      } else {
-        send_vector(mine_asked, 0, comm);
-      }
-    }
+    bool whole = false;
+    const std::vector<std::vector<GlobalId>> asked = gather_asked_ids(path, name, wanted, whole, comm);
     CheckpointTable ids;  // rank 0: the file's ids and width
     parallel::on_root_then_agree([&] { ids = reader->begin_table(name); }, 0, comm);
     std::int64_t shape[2] = {ids.width, std::int64_t(ids.ids.size())};
@@ -361,35 +432,12 @@ void read_checkpoint(const std::string& path, MPI_Comm comm, const WantedRows& w
                               MPI_Bcast(block.data(), int(n * width), MPI_DOUBLE, 0, comm) == MPI_SUCCESS,
                           "checkpoint: broadcast of table " << name << " failed");
         rows.ids = block_ids, rows.values = block;
-        table(name, rows);
-        continue;
-      }
-      if (me != 0) {  // this rank's rows of the block
+      } else if (me != 0) {  // this rank's rows of the block
         rows.ids = receive_vector<std::int64_t>(0, comm);
         rows.values = receive_vector<double>(0, comm);
-        table(name, rows);
-        continue;
-      }
-      // Rank 0: each rank's asked ids within the block (both sorted: one pass over each).
-      const auto begin = ids.ids.begin() + std::ptrdiff_t(first), end = begin + std::ptrdiff_t(n);
-      for (int r = 0; r < np; ++r) {
-        const auto& want = asked[std::size_t(r)];
-        std::size_t& c = cursor[std::size_t(r)];
-        std::vector<GlobalId> out_ids;
-        std::vector<double> out_values;
-        auto at = begin;
-        for (; c < want.size() && want[c] <= *(end - 1); ++c) {
-          at = std::lower_bound(at, end, want[c]);
-          if (at == end || *at != want[c]) continue;  // not in the file
-          const std::size_t row = std::size_t(at - begin);
-          out_ids.push_back(want[c]);
-          out_values.insert(out_values.end(), block.begin() + std::ptrdiff_t(row * width),
-                            block.begin() + std::ptrdiff_t((row + 1) * width));
-        }
-        if (r == 0)
-          rows.ids = std::move(out_ids), rows.values = std::move(out_values);
-        else
-          send_vector(out_ids, r, comm), send_vector(out_values, r, comm);
+      } else {
+        const auto begin = ids.ids.cbegin() + std::ptrdiff_t(first);
+        rows = share_asked_rows(begin, begin + std::ptrdiff_t(n), block, width, asked, cursor, comm);
       }
       table(name, rows);
     }

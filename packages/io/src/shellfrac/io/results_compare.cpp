@@ -141,13 +141,38 @@ CompareTolerances CompareTolerances::from_file(const std::string& path) {
   return t;
 }
 
-std::vector<std::string> compare_results(const ExodusResults& a, const ExodusResults& b, const CompareTolerances& tol,
-                                         std::size_t max_report) {
-  Report rep(max_report);
-  // Tolerance of a variable: its own entry, else that of its vector (displ for displ_x), else the default.
-  auto lookup = [&](const std::string& name) -> std::pair<double, double> {
+namespace {
+
+/// One comparison of two results (A and B): structure first (element order, sets, elements, blocks), then
+/// coordinates, times and the variables matched by name, each within its tolerance.
+class ResultsComparison {
+ public:
+  ResultsComparison(const ExodusResults& a, const ExodusResults& b, const CompareTolerances& tol, std::size_t max_report)
+      : a_(a), b_(b), tol_(tol), rep_(max_report) {}
+
+  std::vector<std::string> run() {
+    if (a_.nodes_per_element != b_.nodes_per_element) {
+      rep_.add("nodes per element differ: A " + std::to_string(a_.nodes_per_element) + ", B " +
+               std::to_string(b_.nodes_per_element));
+      return rep_.finish();
+    }
+    npe_ = static_cast<std::size_t>(a_.nodes_per_element);
+    compare_sets();
+    match_elements();
+    compare_blocks();
+    compare_coordinates();
+    compare_times();
+    compare_field_variables(a_.nodal_names, b_.nodal_names, true);
+    compare_field_variables(a_.element_names, b_.element_names, false);
+    compare_global_variables();
+    return rep_.finish();
+  }
+
+ private:
+  /// Tolerance of a variable: its own entry, else that of its vector (displ for displ_x), else the default.
+  std::pair<double, double> tolerance(const std::string& name) const {
     auto find = [&](const std::string& n) -> const CompareTolerances::Entry* {
-      for (const auto& e : tol.per_variable)
+      for (const auto& e : tol_.per_variable)
         if (e.name == n) return &e;
       return nullptr;
     };
@@ -155,147 +180,162 @@ std::vector<std::string> compare_results(const ExodusResults& a, const ExodusRes
     if (!e && name.size() > 2)
       for (const char* suffix : component_suffix)
         if (name.compare(name.size() - 2, 2, suffix) == 0) e = find(name.substr(0, name.size() - 2));
-    return e ? std::make_pair(e->abs, e->rel) : std::make_pair(tol.default_abs, tol.default_rel);
-  };
-
-  if (a.nodes_per_element != b.nodes_per_element) {
-    rep.add("nodes per element differ: A " + std::to_string(a.nodes_per_element) + ", B " +
-            std::to_string(b.nodes_per_element));
-    return rep.finish();
-  }
-  const std::size_t npe = static_cast<std::size_t>(a.nodes_per_element);
-  for (const auto& [sa, sb, what] : {std::tuple{&a.node_sets, &b.node_sets, "node set"},
-                                     std::tuple{&a.side_sets, &b.side_sets, "side set"}}) {
-    if (*sa == *sb) continue;
-    std::string first = sa->size() != sb->size() ? std::string("their number") : std::string();
-    for (std::size_t k = 0; first.empty() && k < sa->size(); ++k)
-      if (!((*sa)[k] == (*sb)[k])) first = "'" + (*sa)[k].name + "' (id " + std::to_string((*sa)[k].id) + ")";
-    rep.add(std::string(what) + "s differ: " + first);
+    return e ? std::make_pair(e->abs, e->rel) : std::make_pair(tol_.default_abs, tol_.default_rel);
   }
 
-  // Elements: compare those present in both; report the others.
-  std::vector<std::pair<std::size_t, std::size_t>> common;
-  std::vector<GlobalId> only_a, only_b;
-  for (std::size_t i = 0, j = 0; i < a.element_gids.size() || j < b.element_gids.size();) {
-    if (j == b.element_gids.size() || (i < a.element_gids.size() && a.element_gids[i] < b.element_gids[j]))
-      only_a.push_back(a.element_gids[i++]);
-    else if (i == a.element_gids.size() || b.element_gids[j] < a.element_gids[i])
-      only_b.push_back(b.element_gids[j++]);
-    else
-      common.emplace_back(i++, j++);
+  void compare_sets() {
+    for (const auto& [sa, sb, what] : {std::tuple{&a_.node_sets, &b_.node_sets, "node set"},
+                                       std::tuple{&a_.side_sets, &b_.side_sets, "side set"}}) {
+      if (*sa == *sb) continue;
+      std::string first = sa->size() != sb->size() ? std::string("their number") : std::string();
+      for (std::size_t k = 0; first.empty() && k < sa->size(); ++k)
+        if (!((*sa)[k] == (*sb)[k])) first = "'" + (*sa)[k].name + "' (id " + std::to_string((*sa)[k].id) + ")";
+      rep_.add(std::string(what) + "s differ: " + first);
+    }
   }
-  if (!only_a.empty())
-    rep.add(std::to_string(only_a.size()) + " element(s) only in A, gids: " + first_few(only_a));
-  if (!only_b.empty())
-    rep.add(std::to_string(only_b.size()) + " element(s) only in B, gids: " + first_few(only_b));
 
-  // Blocks.
-  std::map<int, std::string> names_a, names_b;
-  for (std::size_t k = 0; k < a.block_ids.size() && k < a.block_names.size(); ++k) names_a[a.block_ids[k]] = a.block_names[k];
-  for (std::size_t k = 0; k < b.block_ids.size() && k < b.block_names.size(); ++k) names_b[b.block_ids[k]] = b.block_names[k];
-  if (names_a != names_b) {
-    std::ostringstream os;
-    os << "element blocks differ: A {";
-    for (const auto& [id, n] : names_a) os << " " << id << ":'" << n << "'";
-    os << " }, B {";
-    for (const auto& [id, n] : names_b) os << " " << id << ":'" << n << "'";
-    os << " }";
-    rep.add(os.str());
+  /// Elements: those present in both are compared; the others are reported.
+  void match_elements() {
+    const auto& ga = a_.element_gids;
+    const auto& gb = b_.element_gids;
+    std::vector<GlobalId> only_a, only_b;
+    for (std::size_t i = 0, j = 0; i < ga.size() || j < gb.size();) {
+      if (j == gb.size() || (i < ga.size() && ga[i] < gb[j]))
+        only_a.push_back(ga[i++]);
+      else if (i == ga.size() || gb[j] < ga[i])
+        only_b.push_back(gb[j++]);
+      else
+        common_.emplace_back(i++, j++);
+    }
+    if (!only_a.empty())
+      rep_.add(std::to_string(only_a.size()) + " element(s) only in A, gids: " + first_few(only_a));
+    if (!only_b.empty())
+      rep_.add(std::to_string(only_b.size()) + " element(s) only in B, gids: " + first_few(only_b));
   }
-  std::size_t block_diffs = 0;
-  std::string first_block_diff;
-  for (const auto& [i, j] : common)
-    if (a.element_block_ids[i] != b.element_block_ids[j] && block_diffs++ == 0)
-      first_block_diff = "element gid " + std::to_string(a.element_gids[i]) + " is in block " +
-                         std::to_string(a.element_block_ids[i]) + " in A, " + std::to_string(b.element_block_ids[j]) +
-                         " in B";
-  if (block_diffs > 0) rep.add(std::to_string(block_diffs) + " element(s) in different blocks; first: " + first_block_diff);
 
-  // Coordinates.
-  {
-    const auto [ta, tr] = lookup("coordinates");
+  void compare_blocks() {
+    std::map<int, std::string> names_a, names_b;
+    for (std::size_t k = 0; k < a_.block_ids.size() && k < a_.block_names.size(); ++k)
+      names_a[a_.block_ids[k]] = a_.block_names[k];
+    for (std::size_t k = 0; k < b_.block_ids.size() && k < b_.block_names.size(); ++k)
+      names_b[b_.block_ids[k]] = b_.block_names[k];
+    if (names_a != names_b) {
+      std::ostringstream os;
+      os << "element blocks differ: A {";
+      for (const auto& [id, n] : names_a) os << " " << id << ":'" << n << "'";
+      os << " }, B {";
+      for (const auto& [id, n] : names_b) os << " " << id << ":'" << n << "'";
+      os << " }";
+      rep_.add(os.str());
+    }
+    std::size_t block_diffs = 0;
+    std::string first_block_diff;
+    for (const auto& [i, j] : common_)
+      if (a_.element_block_ids[i] != b_.element_block_ids[j] && block_diffs++ == 0)
+        first_block_diff = "element gid " + std::to_string(a_.element_gids[i]) + " is in block " +
+                           std::to_string(a_.element_block_ids[i]) + " in A, " +
+                           std::to_string(b_.element_block_ids[j]) + " in B";
+    if (block_diffs > 0)
+      rep_.add(std::to_string(block_diffs) + " element(s) in different blocks; first: " + first_block_diff);
+  }
+
+  /// "element gid G, local node n (DG node gid D)" of A's element i.
+  std::string dg_node(std::size_t i, std::size_t n) const {
+    return "element gid " + std::to_string(a_.element_gids[i]) + ", local node " + std::to_string(n) +
+           " (DG node gid " +
+           std::to_string(a_.element_gids[i] * static_cast<GlobalId>(npe_) + static_cast<GlobalId>(n)) + ")";
+  }
+
+  void compare_coordinates() {
+    const auto [ta, tr] = tolerance("coordinates");
     Worst w;
-    for (const auto& [i, j] : common)
-      for (std::size_t n = 0; n < npe; ++n)
+    for (const auto& [i, j] : common_)
+      for (std::size_t n = 0; n < npe_; ++n)
         for (int c = 0; c < 3; ++c)
-          w.check(a.node_coords[i * npe + n][c], b.node_coords[j * npe + n][c], ta, tr, [&, i = i] {
-            return "element gid " + std::to_string(a.element_gids[i]) + ", local node " + std::to_string(n) +
-                   " (DG node gid " + std::to_string(a.element_gids[i] * static_cast<GlobalId>(npe) +
-                                                     static_cast<GlobalId>(n)) +
-                   "), component " + "xyz"[c];
-          });
-    w.report(rep, "coordinates");
+          w.check(a_.node_coords[i * npe_ + n][c], b_.node_coords[j * npe_ + n][c], ta, tr,
+                  [&, i = i] { return dg_node(i, n) + ", component " + "xyz"[c]; });
+    w.report(rep_, "coordinates");
   }
 
-  // Times.
-  if (a.times.size() != b.times.size())
-    rep.add("number of time steps differs: A " + std::to_string(a.times.size()) + ", B " +
-            std::to_string(b.times.size()) + " (the common steps are compared)");
-  const std::size_t steps = std::min(a.times.size(), b.times.size());
-  {
-    const auto [ta, tr] = lookup("time");
+  void compare_times() {
+    if (a_.times.size() != b_.times.size())
+      rep_.add("number of time steps differs: A " + std::to_string(a_.times.size()) + ", B " +
+               std::to_string(b_.times.size()) + " (the common steps are compared)");
+    steps_ = std::min(a_.times.size(), b_.times.size());
+    const auto [ta, tr] = tolerance("time");
     Worst w;
-    for (std::size_t s = 0; s < steps; ++s)
-      w.check(a.times[s], b.times[s], ta, tr, [&] { return "step " + std::to_string(s + 1); });
-    w.report(rep, "time");
+    for (std::size_t s = 0; s < steps_; ++s)
+      w.check(a_.times[s], b_.times[s], ta, tr, [&] { return "step " + std::to_string(s + 1); });
+    w.report(rep_, "time");
   }
 
-  // Variables, matched by name.
-  auto compare_vars = [&](const std::vector<std::string>& na, const std::vector<std::string>& nb, bool nodal) {
-    const char* kind = nodal ? "nodal variable" : "element variable";
+  /// Reports the names only in A or only in B; returns each name of A with its index in B (the matched ones).
+  std::vector<std::pair<std::size_t, std::size_t>> match_names(const std::vector<std::string>& na,
+                                                               const std::vector<std::string>& nb,
+                                                               const std::string& kind) {
     for (const auto& n : na)
-      if (std::find(nb.begin(), nb.end(), n) == nb.end()) rep.add(std::string(kind) + " '" + n + "' only in A");
+      if (std::find(nb.begin(), nb.end(), n) == nb.end()) rep_.add(kind + " '" + n + "' only in A");
     for (const auto& n : nb)
-      if (std::find(na.begin(), na.end(), n) == na.end()) rep.add(std::string(kind) + " '" + n + "' only in B");
+      if (std::find(na.begin(), na.end(), n) == na.end()) rep_.add(kind + " '" + n + "' only in B");
+    std::vector<std::pair<std::size_t, std::size_t>> matched;
     for (std::size_t va = 0; va < na.size(); ++va) {
       const auto it = std::find(nb.begin(), nb.end(), na[va]);
-      if (it == nb.end()) continue;
-      const auto vb = static_cast<std::size_t>(it - nb.begin());
-      const auto [ta, tr] = lookup(na[va]);
+      if (it != nb.end()) matched.emplace_back(va, static_cast<std::size_t>(it - nb.begin()));
+    }
+    return matched;
+  }
+
+  std::string step(std::size_t s) const {
+    return "step " + std::to_string(s + 1) + " (t = " + num(a_.times[s]) + ")";
+  }
+
+  /// Nodal or element variables, matched by name, over the common elements and steps.
+  void compare_field_variables(const std::vector<std::string>& na, const std::vector<std::string>& nb, bool nodal) {
+    const std::string kind = nodal ? "nodal variable" : "element variable";
+    for (const auto& [va, vb] : match_names(na, nb, kind)) {
+      const auto [ta, tr] = tolerance(na[va]);
       Worst w;
-      for (std::size_t s = 0; s < steps; ++s) {
-        const auto& xa = nodal ? a.nodal[s][va] : a.element[s][va];
-        const auto& xb = nodal ? b.nodal[s][vb] : b.element[s][vb];
-        auto where = [&](std::size_t i, std::size_t n) {
-          std::string w = "step " + std::to_string(s + 1) + " (t = " + num(a.times[s]) + "), element gid " +
-                          std::to_string(a.element_gids[i]);
-          if (nodal)
-            w += ", local node " + std::to_string(n) + " (DG node gid " +
-                 std::to_string(a.element_gids[i] * static_cast<GlobalId>(npe) + static_cast<GlobalId>(n)) + ")";
-          return w;
-        };
-        for (const auto& [i, j] : common) {
+      for (std::size_t s = 0; s < steps_; ++s) {
+        const auto& xa = nodal ? a_.nodal[s][va] : a_.element[s][va];
+        const auto& xb = nodal ? b_.nodal[s][vb] : b_.element[s][vb];
+        for (const auto& [i, j] : common_) {
           if (nodal) {
-            for (std::size_t n = 0; n < npe; ++n)
-              w.check(xa[i * npe + n], xb[j * npe + n], ta, tr, [&, i = i] { return where(i, n); });
+            for (std::size_t n = 0; n < npe_; ++n)
+              w.check(xa[i * npe_ + n], xb[j * npe_ + n], ta, tr, [&, i = i] { return step(s) + ", " + dg_node(i, n); });
           } else {
-            w.check(xa[i], xb[j], ta, tr, [&, i = i] { return where(i, 0); });
+            w.check(xa[i], xb[j], ta, tr,
+                    [&, i = i] { return step(s) + ", element gid " + std::to_string(a_.element_gids[i]); });
           }
         }
       }
-      w.report(rep, std::string(kind) + " '" + na[va] + "'");
+      w.report(rep_, kind + " '" + na[va] + "'");
     }
-  };
-  compare_vars(a.nodal_names, b.nodal_names, true);
-  compare_vars(a.element_names, b.element_names, false);
-  for (const auto& n : a.global_names)
-    if (std::find(b.global_names.begin(), b.global_names.end(), n) == b.global_names.end())
-      rep.add("global variable '" + n + "' only in A");
-  for (const auto& n : b.global_names)
-    if (std::find(a.global_names.begin(), a.global_names.end(), n) == a.global_names.end())
-      rep.add("global variable '" + n + "' only in B");
-  for (std::size_t va = 0; va < a.global_names.size(); ++va) {
-    const auto it = std::find(b.global_names.begin(), b.global_names.end(), a.global_names[va]);
-    if (it == b.global_names.end()) continue;
-    const auto vb = static_cast<std::size_t>(it - b.global_names.begin());
-    const auto [ta, tr] = lookup(a.global_names[va]);
-    Worst w;
-    for (std::size_t s = 0; s < steps; ++s)
-      w.check(a.global[s][va], b.global[s][vb], ta, tr,
-              [&] { return "step " + std::to_string(s + 1) + " (t = " + num(a.times[s]) + ")"; });
-    w.report(rep, "global variable '" + a.global_names[va] + "'");
   }
-  return rep.finish();
+
+  void compare_global_variables() {
+    for (const auto& [va, vb] : match_names(a_.global_names, b_.global_names, "global variable")) {
+      const auto [ta, tr] = tolerance(a_.global_names[va]);
+      Worst w;
+      for (std::size_t s = 0; s < steps_; ++s)
+        w.check(a_.global[s][va], b_.global[s][vb], ta, tr, [&] { return step(s); });
+      w.report(rep_, "global variable '" + a_.global_names[va] + "'");
+    }
+  }
+
+  const ExodusResults& a_;
+  const ExodusResults& b_;
+  const CompareTolerances& tol_;
+  Report rep_;
+  std::size_t npe_ = 0;
+  std::size_t steps_ = 0;  ///< time steps in both
+  std::vector<std::pair<std::size_t, std::size_t>> common_;  ///< (index in A, index in B) of the elements in both
+};
+
+}  // namespace
+
+std::vector<std::string> compare_results(const ExodusResults& a, const ExodusResults& b, const CompareTolerances& tol,
+                                         std::size_t max_report) {
+  return ResultsComparison(a, b, tol, max_report).run();
 }
 
 }  // namespace shellfrac::io

@@ -80,175 +80,211 @@ std::vector<ResultsSet> read_sets(int id, ex_entity_type type, const std::vector
 }
 
 /// Reads one results file; elements in file order (not yet sorted).
-ExodusResults read_file(const std::string& path) {
-  std::error_code ec;
-  SHELLFRAC_INPUT_REQUIRE(fs::is_regular_file(path, ec), path << ": results file not found");
-  exodus::File file = exodus::open_read(path);
-  SHELLFRAC_INPUT_REQUIRE(file.is_open(), path << ": cannot open as an Exodus II file (" << exodus::last_error() << ")");
-  const int id = file.id();
-  const std::string not_ours = ": not a shellfrac DG results file: ";
+class ResultsFileReader {
+ public:
+  explicit ResultsFileReader(const std::string& path) : path_(path) {}
 
-  ex_init_params p{};
-  SHELLFRAC_EXO_INPUT_CHECK(ex_get_init_ext(id, &p), path << ": cannot read the Exodus header");
-  SHELLFRAC_INPUT_REQUIRE(p.num_dim == 2 || p.num_dim == 3, path << not_ours << p.num_dim << "-D coordinates");
-  const std::int64_t num_nodes = checked_count(p.num_nodes, path, "node");
-  const std::int64_t num_elem = checked_count(p.num_elem, path, "element");
-  const std::int64_t num_blk = checked_count(p.num_elem_blk, path, "element block");
-  SHELLFRAC_INPUT_REQUIRE(num_blk > 0, path << not_ours << "no element blocks");
+  ExodusResults read() {
+    std::error_code ec;
+    SHELLFRAC_INPUT_REQUIRE(fs::is_regular_file(path_, ec), path_ << ": results file not found");
+    exodus::File file = exodus::open_read(path_);
+    SHELLFRAC_INPUT_REQUIRE(file.is_open(),
+                            path_ << ": cannot open as an Exodus II file (" << exodus::last_error() << ")");
+    id_ = file.id();
+    read_header();
+    read_blocks();
+    read_id_maps_and_coordinates();
+    r_.node_sets = read_sets(id_, EX_NODE_SET, nmap_, path_);
+    r_.side_sets = read_sets(id_, EX_SIDE_SET, emap_, path_);
+    read_variable_names();
+    for (int step = 1; step <= static_cast<int>(r_.times.size()); ++step) read_step(step);
+    read_info();
+    return std::move(r_);
+  }
 
-  ExodusResults r;
-  r.title = p.title;
-  std::vector<std::int64_t> ids(static_cast<std::size_t>(num_blk));
-  SHELLFRAC_EXO_INPUT_CHECK(ex_get_ids(id, EX_ELEM_BLOCK, ids.data()), path << ": cannot read element block ids");
-  const auto names = exodus::get_names(id, EX_ELEM_BLOCK, num_blk, path);
-  int npe = 0;
-  std::vector<std::int64_t> conn, block_count;
-  for (std::size_t b = 0; b < ids.size(); ++b) {
+ private:
+  static constexpr const char* not_ours = ": not a shellfrac DG results file: ";
+
+  void read_header() {
+    SHELLFRAC_EXO_INPUT_CHECK(ex_get_init_ext(id_, &p_), path_ << ": cannot read the Exodus header");
+    SHELLFRAC_INPUT_REQUIRE(p_.num_dim == 2 || p_.num_dim == 3, path_ << not_ours << p_.num_dim << "-D coordinates");
+    num_nodes_ = checked_count(p_.num_nodes, path_, "node");
+    num_elem_ = checked_count(p_.num_elem, path_, "element");
+    num_blk_ = checked_count(p_.num_elem_blk, path_, "element block");
+    SHELLFRAC_INPUT_REQUIRE(num_blk_ > 0, path_ << not_ours << "no element blocks");
+    r_.title = p_.title;
+  }
+
+  void read_blocks() {
+    block_ids_.assign(static_cast<std::size_t>(num_blk_), 0);
+    SHELLFRAC_EXO_INPUT_CHECK(ex_get_ids(id_, EX_ELEM_BLOCK, block_ids_.data()),
+                              path_ << ": cannot read element block ids");
+    const auto names = exodus::get_names(id_, EX_ELEM_BLOCK, num_blk_, path_);
+    for (std::size_t b = 0; b < block_ids_.size(); ++b) read_block(block_ids_[b], names[b]);
+    r_.nodes_per_element = npe_;  // 0 for a file without elements (merge() takes it from the others)
+    SHELLFRAC_INPUT_REQUIRE(static_cast<std::int64_t>(r_.element_block_ids.size()) == num_elem_,
+                            path_ << ": the element blocks hold " << r_.element_block_ids.size()
+                                  << " elements but the header says " << num_elem_);
+    SHELLFRAC_INPUT_REQUIRE(num_nodes_ == num_elem_ * npe_ || (num_elem_ == 0 && num_nodes_ <= 1),
+                            path_ << not_ours << num_nodes_ << " nodes for " << num_elem_ << " elements of " << npe_
+                                  << " nodes (DG nodes are not shared)");
+    for (auto c : conn_)
+      SHELLFRAC_INPUT_REQUIRE(c >= 1 && c <= num_nodes_, path_ << ": connectivity refers to node " << c
+                                                               << " but the file has " << num_nodes_ << " nodes");
+  }
+
+  void read_block(std::int64_t block_id, const std::string& name) {
     ex_block blk{};
-    blk.id = ids[b];
+    blk.id = block_id;
     blk.type = EX_ELEM_BLOCK;
-    SHELLFRAC_EXO_INPUT_CHECK(ex_get_block_param(id, &blk), path << ": cannot read element block " << ids[b]);
+    SHELLFRAC_EXO_INPUT_CHECK(ex_get_block_param(id_, &blk), path_ << ": cannot read element block " << block_id);
     blk.topology[MAX_STR_LENGTH] = '\0';
     const std::string type = exodus::upper(blk.topology);
-    SHELLFRAC_INPUT_REQUIRE(ids[b] > 0 && ids[b] <= exodus::max_stored_int,
-                            path << ": element block id " << ids[b] << " is out of range");
-    checked_count(blk.num_entry, path, "block element");
-    r.block_ids.push_back(static_cast<int>(ids[b]));
-    r.block_names.push_back(names[b].empty() ? "block_" + std::to_string(ids[b]) : names[b]);
-    block_count.push_back(blk.num_entry);
-    if (blk.num_entry == 0) continue;  // Exodus stores empty blocks with type "NULL" and 0 nodes
+    SHELLFRAC_INPUT_REQUIRE(block_id > 0 && block_id <= exodus::max_stored_int,
+                            path_ << ": element block id " << block_id << " is out of range");
+    checked_count(blk.num_entry, path_, "block element");
+    r_.block_ids.push_back(static_cast<int>(block_id));
+    r_.block_names.push_back(name.empty() ? "block_" + std::to_string(block_id) : name);
+    block_count_.push_back(blk.num_entry);
+    if (blk.num_entry == 0) return;  // Exodus stores empty blocks with type "NULL" and 0 nodes
     SHELLFRAC_INPUT_REQUIRE(type.rfind("TRI", 0) == 0 && (blk.num_nodes_per_entry == 3 || blk.num_nodes_per_entry == 6),
-                            path << not_ours << "element block " << ids[b] << " has type '" << blk.topology
-                                 << "' with " << blk.num_nodes_per_entry << " nodes (expected TRISHELL3/TRISHELL6)");
-    if (npe == 0) npe = static_cast<int>(blk.num_nodes_per_entry);
-    SHELLFRAC_INPUT_REQUIRE(npe == blk.num_nodes_per_entry,
-                            path << not_ours << "element blocks mix " << npe << "- and " << blk.num_nodes_per_entry
-                                 << "-node elements");
-    SHELLFRAC_INPUT_REQUIRE(static_cast<std::int64_t>(r.element_block_ids.size()) + blk.num_entry <= num_elem,
-                            path << ": the element blocks hold more elements than the header's " << num_elem);
-    r.element_block_ids.insert(r.element_block_ids.end(), static_cast<std::size_t>(blk.num_entry),
-                               static_cast<int>(ids[b]));
-    std::vector<std::int64_t> c(static_cast<std::size_t>(blk.num_entry * npe));
-    SHELLFRAC_EXO_INPUT_CHECK(ex_get_conn(id, EX_ELEM_BLOCK, ids[b], c.data(), nullptr, nullptr),
-                              path << ": cannot read the connectivity of element block " << ids[b]);
-    conn.insert(conn.end(), c.begin(), c.end());
+                            path_ << not_ours << "element block " << block_id << " has type '" << blk.topology
+                                  << "' with " << blk.num_nodes_per_entry << " nodes (expected TRISHELL3/TRISHELL6)");
+    if (npe_ == 0) npe_ = static_cast<int>(blk.num_nodes_per_entry);
+    SHELLFRAC_INPUT_REQUIRE(npe_ == blk.num_nodes_per_entry,
+                            path_ << not_ours << "element blocks mix " << npe_ << "- and " << blk.num_nodes_per_entry
+                                  << "-node elements");
+    SHELLFRAC_INPUT_REQUIRE(static_cast<std::int64_t>(r_.element_block_ids.size()) + blk.num_entry <= num_elem_,
+                            path_ << ": the element blocks hold more elements than the header's " << num_elem_);
+    r_.element_block_ids.insert(r_.element_block_ids.end(), static_cast<std::size_t>(blk.num_entry),
+                                static_cast<int>(block_id));
+    std::vector<std::int64_t> c(static_cast<std::size_t>(blk.num_entry * npe_));
+    SHELLFRAC_EXO_INPUT_CHECK(ex_get_conn(id_, EX_ELEM_BLOCK, block_id, c.data(), nullptr, nullptr),
+                              path_ << ": cannot read the connectivity of element block " << block_id);
+    conn_.insert(conn_.end(), c.begin(), c.end());
   }
-  r.nodes_per_element = npe;  // 0 for a file without elements (merge() takes it from the others)
-  SHELLFRAC_INPUT_REQUIRE(static_cast<std::int64_t>(r.element_block_ids.size()) == num_elem,
-                          path << ": the element blocks hold " << r.element_block_ids.size()
-                               << " elements but the header says " << num_elem);
-  SHELLFRAC_INPUT_REQUIRE(num_nodes == num_elem * npe || (num_elem == 0 && num_nodes <= 1), path << not_ours << num_nodes << " nodes for " << num_elem
-                                                            << " elements of " << npe
-                                                            << " nodes (DG nodes are not shared)");
-  for (auto c : conn)
-    SHELLFRAC_INPUT_REQUIRE(c >= 1 && c <= num_nodes, path << ": connectivity refers to node " << c
-                                                           << " but the file has " << num_nodes << " nodes");
 
-  // Id maps: element gid = map - 1; DG node of (element, a) must have id gid * npe + a + 1.
-  std::vector<std::int64_t> emap, nmap;
-  if (num_elem > 0) {
-    emap.resize(static_cast<std::size_t>(num_elem)), nmap.resize(static_cast<std::size_t>(num_nodes));
-    SHELLFRAC_EXO_INPUT_CHECK(ex_get_id_map(id, EX_ELEM_MAP, emap.data()), path << ": cannot read the element id map");
-    SHELLFRAC_EXO_INPUT_CHECK(ex_get_id_map(id, EX_NODE_MAP, nmap.data()), path << ": cannot read the node id map");
-    for (std::size_t i = 0; i < emap.size(); ++i) {
-      SHELLFRAC_INPUT_REQUIRE(emap[i] >= 1, path << ": element id " << emap[i] << " is not positive");
-      const GlobalId gid = emap[i] - 1;
-      r.element_gids.push_back(gid);
-      for (int a = 0; a < npe; ++a) {
-        const std::int64_t node = conn[i * npe + a] - 1;
-        SHELLFRAC_INPUT_REQUIRE(nmap[static_cast<std::size_t>(node)] == gid * npe + a + 1,
-                                path << not_ours << "node " << node + 1 << " (node " << a + 1 << " of element id "
-                                     << emap[i] << ") has id " << nmap[static_cast<std::size_t>(node)] << ", expected "
-                                     << gid * npe + a + 1);
+  /// Id maps: element gid = map - 1; DG node of (element, a) must have id gid * npe + a + 1.
+  void read_id_maps_and_coordinates() {
+    if (num_elem_ == 0) return;
+    emap_.resize(static_cast<std::size_t>(num_elem_)), nmap_.resize(static_cast<std::size_t>(num_nodes_));
+    SHELLFRAC_EXO_INPUT_CHECK(ex_get_id_map(id_, EX_ELEM_MAP, emap_.data()), path_ << ": cannot read the element id map");
+    SHELLFRAC_EXO_INPUT_CHECK(ex_get_id_map(id_, EX_NODE_MAP, nmap_.data()), path_ << ": cannot read the node id map");
+    for (std::size_t i = 0; i < emap_.size(); ++i) {
+      SHELLFRAC_INPUT_REQUIRE(emap_[i] >= 1, path_ << ": element id " << emap_[i] << " is not positive");
+      const GlobalId gid = emap_[i] - 1;
+      r_.element_gids.push_back(gid);
+      for (int a = 0; a < npe_; ++a) {
+        const std::int64_t node = conn_[i * npe_ + a] - 1;
+        SHELLFRAC_INPUT_REQUIRE(nmap_[static_cast<std::size_t>(node)] == gid * npe_ + a + 1,
+                                path_ << not_ours << "node " << node + 1 << " (node " << a + 1 << " of element id "
+                                      << emap_[i] << ") has id " << nmap_[static_cast<std::size_t>(node)]
+                                      << ", expected " << gid * npe_ + a + 1);
       }
     }
-    std::vector<double> x(static_cast<std::size_t>(num_nodes)), y(x.size()), z(x.size(), 0.0);
-    SHELLFRAC_EXO_INPUT_CHECK(ex_get_coord(id, x.data(), y.data(), p.num_dim == 3 ? z.data() : nullptr),
-                              path << ": cannot read the coordinates");
-    for (auto c : conn) {
+    std::vector<double> x(static_cast<std::size_t>(num_nodes_)), y(x.size()), z(x.size(), 0.0);
+    SHELLFRAC_EXO_INPUT_CHECK(ex_get_coord(id_, x.data(), y.data(), p_.num_dim == 3 ? z.data() : nullptr),
+                              path_ << ": cannot read the coordinates");
+    for (auto c : conn_) {
       const auto n = static_cast<std::size_t>(c - 1);
-      r.node_coords.push_back({x[n], y[n], z[n]});
+      r_.node_coords.push_back({x[n], y[n], z[n]});
     }
   }
 
-  r.node_sets = read_sets(id, EX_NODE_SET, nmap, path);
-  r.side_sets = read_sets(id, EX_SIDE_SET, emap, path);
+  /// The times, the variable names and the element variable truth table.
+  void read_variable_names() {
+    const std::int64_t num_steps = ex_inquire_int(id_, EX_INQ_TIME);
+    checked_count(num_steps, path_, "time step");
+    r_.times.assign(static_cast<std::size_t>(num_steps), 0.0);
+    if (num_steps > 0)
+      SHELLFRAC_EXO_INPUT_CHECK(ex_get_all_times(id_, r_.times.data()), path_ << ": cannot read the times");
+    SHELLFRAC_EXO_INPUT_CHECK(ex_get_variable_param(id_, EX_NODAL, &nv_), path_ << ": cannot read the nodal variables");
+    SHELLFRAC_EXO_INPUT_CHECK(ex_get_variable_param(id_, EX_ELEM_BLOCK, &ev_),
+                              path_ << ": cannot read the element variables");
+    checked_count(nv_, path_, "nodal variable");
+    checked_count(ev_, path_, "element variable");
+    r_.nodal_names = exodus::get_names(id_, EX_NODAL, nv_, path_, true);
+    r_.element_names = exodus::get_names(id_, EX_ELEM_BLOCK, ev_, path_, true);
+    SHELLFRAC_EXO_INPUT_CHECK(ex_get_variable_param(id_, EX_GLOBAL, &gv_), path_ << ": cannot read the global variables");
+    checked_count(gv_, path_, "global variable");
+    r_.global_names = exodus::get_names(id_, EX_GLOBAL, gv_, path_, true);
+    truth_.assign(static_cast<std::size_t>(num_blk_ * ev_), 1);
+    if (ev_ > 0)
+      SHELLFRAC_EXO_INPUT_CHECK(ex_get_truth_table(id_, EX_ELEM_BLOCK, static_cast<int>(num_blk_), ev_, truth_.data()),
+                                path_ << ": cannot read the element variable truth table");
+  }
 
-  // Variables and steps.
-  const std::int64_t num_steps = ex_inquire_int(id, EX_INQ_TIME);
-  checked_count(num_steps, path, "time step");
-  r.times.assign(static_cast<std::size_t>(num_steps), 0.0);
-  if (num_steps > 0) SHELLFRAC_EXO_INPUT_CHECK(ex_get_all_times(id, r.times.data()), path << ": cannot read the times");
-  int nv = 0, ev = 0;
-  SHELLFRAC_EXO_INPUT_CHECK(ex_get_variable_param(id, EX_NODAL, &nv), path << ": cannot read the nodal variables");
-  SHELLFRAC_EXO_INPUT_CHECK(ex_get_variable_param(id, EX_ELEM_BLOCK, &ev), path << ": cannot read the element variables");
-  checked_count(nv, path, "nodal variable");
-  checked_count(ev, path, "element variable");
-  r.nodal_names = exodus::get_names(id, EX_NODAL, nv, path, true);
-  r.element_names = exodus::get_names(id, EX_ELEM_BLOCK, ev, path, true);
-  int gv = 0;
-  SHELLFRAC_EXO_INPUT_CHECK(ex_get_variable_param(id, EX_GLOBAL, &gv), path << ": cannot read the global variables");
-  checked_count(gv, path, "global variable");
-  r.global_names = exodus::get_names(id, EX_GLOBAL, gv, path, true);
-  std::vector<int> truth(static_cast<std::size_t>(num_blk * ev), 1);
-  if (ev > 0)
-    SHELLFRAC_EXO_INPUT_CHECK(ex_get_truth_table(id, EX_ELEM_BLOCK, static_cast<int>(num_blk), ev, truth.data()),
-                              path << ": cannot read the element variable truth table");
-
-  const auto ne = static_cast<std::size_t>(num_elem);
-  std::vector<double> buf;
-  for (int step = 1; step <= num_steps; ++step) {
-    std::vector<std::vector<double>> nodal(static_cast<std::size_t>(nv)), element(static_cast<std::size_t>(ev));
-    for (int v = 0; v < nv; ++v) {
-      if (num_nodes == 0) continue;
-      buf.assign(static_cast<std::size_t>(num_nodes), 0.0);
-      SHELLFRAC_EXO_INPUT_CHECK(ex_get_var(id, step, EX_NODAL, v + 1, 1, num_nodes, buf.data()),
-                                path << ": cannot read nodal variable '" << r.nodal_names[v] << "' at step " << step);
+  void read_step(int step) {
+    std::vector<std::vector<double>> nodal(static_cast<std::size_t>(nv_)), element(static_cast<std::size_t>(ev_));
+    for (int v = 0; v < nv_; ++v) {
+      if (num_nodes_ == 0) continue;
+      buf_.assign(static_cast<std::size_t>(num_nodes_), 0.0);
+      SHELLFRAC_EXO_INPUT_CHECK(ex_get_var(id_, step, EX_NODAL, v + 1, 1, num_nodes_, buf_.data()),
+                                path_ << ": cannot read nodal variable '" << r_.nodal_names[v] << "' at step " << step);
       auto& out = nodal[v];
-      out.reserve(conn.size());
-      for (auto c : conn) out.push_back(buf[static_cast<std::size_t>(c - 1)]);
+      out.reserve(conn_.size());
+      for (auto c : conn_) out.push_back(buf_[static_cast<std::size_t>(c - 1)]);
     }
-    for (int v = 0; v < ev; ++v) {
-      auto& out = element[v];
-      out.reserve(ne);
-      for (std::size_t b = 0; b < ids.size(); ++b) {
-        const std::int64_t n = block_count[b];
-        if (n == 0) continue;
-        if (truth[b * ev + v] == 0) {  // not stored for this block
-          out.insert(out.end(), static_cast<std::size_t>(n), std::numeric_limits<double>::quiet_NaN());
-          continue;
-        }
-        buf.assign(static_cast<std::size_t>(n), 0.0);
-        SHELLFRAC_EXO_INPUT_CHECK(ex_get_var(id, step, EX_ELEM_BLOCK, v + 1, ids[b], n, buf.data()),
-                                  path << ": cannot read element variable '" << r.element_names[v] << "' of block "
-                                       << ids[b] << " at step " << step);
-        out.insert(out.end(), buf.begin(), buf.end());
-      }
-    }
-    std::vector<double> global(static_cast<std::size_t>(gv), 0.0);
-    if (gv > 0)
-      SHELLFRAC_EXO_INPUT_CHECK(ex_get_var(id, step, EX_GLOBAL, 1, 0, gv, global.data()),
-                                path << ": cannot read the global variables at step " << step);
-    r.nodal.push_back(std::move(nodal));
-    r.element.push_back(std::move(element));
-    r.global.push_back(std::move(global));
+    for (int v = 0; v < ev_; ++v) element[v] = read_element_variable(step, v);
+    std::vector<double> global(static_cast<std::size_t>(gv_), 0.0);
+    if (gv_ > 0)
+      SHELLFRAC_EXO_INPUT_CHECK(ex_get_var(id_, step, EX_GLOBAL, 1, 0, gv_, global.data()),
+                                path_ << ": cannot read the global variables at step " << step);
+    r_.nodal.push_back(std::move(nodal));
+    r_.element.push_back(std::move(element));
+    r_.global.push_back(std::move(global));
   }
 
-  const std::int64_t num_info = ex_inquire_int(id, EX_INQ_INFO);
-  checked_count(num_info, path, "information record");
-  if (num_info > 0) {
+  /// Element variable v at `step` over the blocks in order (NaN where the truth table says it is not stored).
+  std::vector<double> read_element_variable(int step, int v) {
+    std::vector<double> out;
+    out.reserve(static_cast<std::size_t>(num_elem_));
+    for (std::size_t b = 0; b < block_ids_.size(); ++b) {
+      const std::int64_t n = block_count_[b];
+      if (n == 0) continue;
+      if (truth_[b * ev_ + v] == 0) {  // not stored for this block
+        out.insert(out.end(), static_cast<std::size_t>(n), std::numeric_limits<double>::quiet_NaN());
+        continue;
+      }
+      buf_.assign(static_cast<std::size_t>(n), 0.0);
+      SHELLFRAC_EXO_INPUT_CHECK(ex_get_var(id_, step, EX_ELEM_BLOCK, v + 1, block_ids_[b], n, buf_.data()),
+                                path_ << ": cannot read element variable '" << r_.element_names[v] << "' of block "
+                                      << block_ids_[b] << " at step " << step);
+      out.insert(out.end(), buf_.begin(), buf_.end());
+    }
+    return out;
+  }
+
+  void read_info() {
+    const std::int64_t num_info = ex_inquire_int(id_, EX_INQ_INFO);
+    checked_count(num_info, path_, "information record");
+    if (num_info == 0) return;
     std::vector<std::vector<char>> lines(static_cast<std::size_t>(num_info),
                                          std::vector<char>(MAX_LINE_LENGTH + 2, '\0'));
     std::vector<char*> ptr;
     for (auto& l : lines) ptr.push_back(l.data());
-    SHELLFRAC_EXO_INPUT_CHECK(ex_get_info(id, ptr.data()), path << ": cannot read the information records");
+    SHELLFRAC_EXO_INPUT_CHECK(ex_get_info(id_, ptr.data()), path_ << ": cannot read the information records");
     for (auto& l : lines) {
       l.back() = '\0';
-      r.info.emplace_back(l.data());
+      r_.info.emplace_back(l.data());
     }
   }
-  return r;
-}
+
+  const std::string& path_;
+  int id_ = -1;
+  ex_init_params p_{};
+  std::int64_t num_nodes_ = 0, num_elem_ = 0, num_blk_ = 0;
+  int npe_ = 0;
+  std::vector<std::int64_t> block_ids_, block_count_;
+  std::vector<std::int64_t> conn_;          ///< 1-based file nodes of each element, file order
+  std::vector<std::int64_t> emap_, nmap_;  ///< the element and node id maps
+  int nv_ = 0, ev_ = 0, gv_ = 0;           ///< nodal, element and global variables
+  std::vector<int> truth_;                 ///< element variable truth table, block-major
+  std::vector<double> buf_;
+  ExodusResults r_;
+};
+
+ExodusResults read_file(const std::string& path) { return ResultsFileReader(path).read(); }
 
 /// The union of the sets of every file (each file declares the same sets), sorted.
 std::vector<ResultsSet> merge_sets(const std::vector<ExodusResults>& parts, const std::vector<std::string>& files,

@@ -198,26 +198,9 @@ class FileWriter {
  public:
   void open(const std::string& path, const FileLayout& l) {
     path_ = path;
-    const int npe = l.nodes_per_element;
+    check_layout(path, l);
     const std::size_t ne = l.element_gids.size();
-    SHELLFRAC_REQUIRE(npe == 3 || npe == 6, path << ": nodes_per_element is " << npe << " (expected 3 or 6)");
-    SHELLFRAC_REQUIRE(l.element_block.size() == ne, path << ": element_block has " << l.element_block.size()
-                                                         << " entries for " << ne << " elements");
-    SHELLFRAC_REQUIRE(l.node_coords.size() == ne * npe, path << ": node_coords has " << l.node_coords.size()
-                                                             << " entries, expected " << ne * npe);
-    SHELLFRAC_REQUIRE(l.block_names.size() == l.block_ids.size(), path << ": block_names and block_ids differ in size");
-    for (std::size_t i = 0; i < ne; ++i) {
-      SHELLFRAC_REQUIRE(l.element_block[i] >= 0 && l.element_block[i] < static_cast<int>(l.block_ids.size()),
-                        path << ": element " << l.element_gids[i] << " has block index " << l.element_block[i]);
-      SHELLFRAC_REQUIRE(l.element_gids[i] >= 0 && (l.element_gids[i] + 1) * npe <= exodus::max_stored_int,
-                        path << ": element gid " << l.element_gids[i] << " is out of the 32-bit Exodus id range");
-      SHELLFRAC_REQUIRE(i == 0 || l.element_gids[i - 1] < l.element_gids[i],
-                        path << ": element gids are not strictly ascending at " << l.element_gids[i]);
-    }
-    exodus::check_name_lengths(l.block_names, "element block", path);
-    exodus::check_name_lengths(l.nodal_names, "nodal variable", path);
-    exodus::check_name_lengths(l.element_names, "element variable", path);
-
+    const int npe = l.nodes_per_element;
     num_elements_ = ne;
     num_nodes_ = ne * npe;
     // Exodus stores no nodal variables in a file without nodes, so a rank owning no elements writes one
@@ -232,87 +215,11 @@ class FileWriter {
     file_ = exodus::create(path);
     if (!file_.is_open()) throw OutputError(path + ": cannot create the results file: " + exodus::last_error());
     const int id = file_.id();
-    // History column names may exceed Exodus' default 32 characters: the file declares the longest before its
-    // dimensions are defined, and stores them whole.
-    std::size_t longest = 0;
-    for (const auto& n : l.global_names) longest = std::max(longest, n.size());
-    SHELLFRAC_REQUIRE(longest <= max_global_name_length,
-                      path << ": a global variable name is longer than " << max_global_name_length << " characters");
-    if (longest > static_cast<std::size_t>(MAX_NAME_LENGTH)) ex_set_max_name_length(id, static_cast<int>(longest));
-
-    ex_init_params p{};
-    l.title.copy(p.title, MAX_LINE_LENGTH);
-    p.num_dim = 3;
-    p.num_nodes = static_cast<std::int64_t>(num_file_nodes_);
-    p.num_elem = static_cast<std::int64_t>(ne);
-    p.num_elem_blk = static_cast<std::int64_t>(l.block_ids.size());
-    p.num_node_sets = static_cast<std::int64_t>(l.node_sets.size());
-    p.num_side_sets = static_cast<std::int64_t>(l.side_sets.size());
-    SHELLFRAC_EXO_CHECK(ex_put_init_ext(id, &p), path);
-    if (l.nemesis) put_nemesis(id, *l.nemesis, l, path);
-    SHELLFRAC_EXO_CHECK(exodus::put_info(id, l.info), path);
-    SHELLFRAC_EXO_CHECK(put_qa(id), path << ": QA record");
-    SHELLFRAC_EXO_CHECK(put_coordinate_names(id), path << ": coordinate names");
-
-    {  // one coordinate at a time (ex_put_coord skips the null arrays)
-      std::vector<double> c(num_file_nodes_, 0.0);
-      for (int k = 0; k < 3; ++k) {
-        for (std::size_t n = 0; n < num_nodes_; ++n) c[n] = l.node_coords[n][k];
-        SHELLFRAC_EXO_CHECK(ex_put_coord(id, k == 0 ? c.data() : nullptr, k == 1 ? c.data() : nullptr,
-                                         k == 2 ? c.data() : nullptr),
-                            path);
-      }
-    }
-
-    // Blocks: file elements are grouped by block; DG node i*npe + a belongs to (layout) element i.
-    const char* type = npe == 3 ? "TRISHELL3" : "TRISHELL6";
-    std::vector<std::int64_t> elem_map, file_element(ne);
-    for (std::size_t b = 0; b < block_ids_.size(); ++b) {
-      const auto& elems = block_elements_[b];
-      SHELLFRAC_EXO_CHECK(ex_put_block(id, EX_ELEM_BLOCK, block_ids_[b], type,
-                                       static_cast<std::int64_t>(elems.size()), npe, 0, 0, 0),
-                          path << ": element block " << block_ids_[b]);
-      if (elems.empty()) continue;
-      std::vector<std::int64_t> conn;
-      for (std::size_t i : elems) {
-        for (int a = 0; a < npe; ++a) conn.push_back(static_cast<std::int64_t>(i * npe + a) + 1);
-        elem_map.push_back(l.element_gids[i] + 1);
-        file_element[i] = static_cast<std::int64_t>(elem_map.size());
-      }
-      SHELLFRAC_EXO_CHECK(ex_put_conn(id, EX_ELEM_BLOCK, block_ids_[b], conn.data(), nullptr, nullptr),
-                          path << ": element block " << block_ids_[b]);
-    }
-    SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_ELEM_BLOCK, l.block_names), path);
-    if (ne > 0) {
-      std::vector<std::int64_t> node_map(num_nodes_);
-      for (std::size_t i = 0; i < ne; ++i)
-        for (int a = 0; a < npe; ++a) node_map[i * npe + a] = l.element_gids[i] * npe + a + 1;
-      SHELLFRAC_EXO_CHECK(ex_put_id_map(id, EX_NODE_MAP, node_map.data()), path);
-      SHELLFRAC_EXO_CHECK(ex_put_id_map(id, EX_ELEM_MAP, elem_map.data()), path);
-    } else {
-      const std::int64_t placeholder_id = exodus::max_stored_int;
-      SHELLFRAC_EXO_CHECK(ex_put_id_map(id, EX_NODE_MAP, &placeholder_id), path);
-    }
+    put_header(id, l);
+    put_coordinates(id, l);
+    const std::vector<std::int64_t> file_element = put_blocks_and_id_maps(id, l);
     put_sets(id, l, file_element, path);
-
-    if (num_nodal_ > 0) {
-      SHELLFRAC_EXO_CHECK(ex_put_variable_param(id, EX_NODAL, static_cast<int>(num_nodal_)), path);
-      SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_NODAL, l.nodal_names, true), path);
-    }
-    if (num_element_vars_ > 0 && !block_ids_.empty()) {
-      SHELLFRAC_EXO_CHECK(ex_put_variable_param(id, EX_ELEM_BLOCK, static_cast<int>(num_element_vars_)), path);
-      SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_ELEM_BLOCK, l.element_names, true), path);
-      std::vector<int> truth;  // [block][variable]; empty blocks have no values
-      for (const auto& elems : block_elements_) truth.insert(truth.end(), num_element_vars_, elems.empty() ? 0 : 1);
-      SHELLFRAC_EXO_CHECK(ex_put_truth_table(id, EX_ELEM_BLOCK, static_cast<int>(block_ids_.size()),
-                                             static_cast<int>(num_element_vars_), truth.data()),
-                          path);
-    }
-    num_global_ = l.global_names.size();
-    if (num_global_ > 0) {
-      SHELLFRAC_EXO_CHECK(ex_put_variable_param(id, EX_GLOBAL, static_cast<int>(num_global_)), path);
-      SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_GLOBAL, l.global_names, true), path);
-    }
+    put_variable_names(id, l);
     SHELLFRAC_EXO_CHECK(ex_update(id), path);
   }
 
@@ -368,6 +275,127 @@ class FileWriter {
   std::size_t num_global() const { return num_global_; }
 
  private:
+  /// The layout is consistent: 3 or 6 nodes per element, sizes that agree, block indices in range, element gids
+  /// strictly ascending within the 32-bit Exodus id range, names that fit.
+  static void check_layout(const std::string& path, const FileLayout& l) {
+    const int npe = l.nodes_per_element;
+    const std::size_t ne = l.element_gids.size();
+    SHELLFRAC_REQUIRE(npe == 3 || npe == 6, path << ": nodes_per_element is " << npe << " (expected 3 or 6)");
+    SHELLFRAC_REQUIRE(l.element_block.size() == ne, path << ": element_block has " << l.element_block.size()
+                                                         << " entries for " << ne << " elements");
+    SHELLFRAC_REQUIRE(l.node_coords.size() == ne * npe, path << ": node_coords has " << l.node_coords.size()
+                                                             << " entries, expected " << ne * npe);
+    SHELLFRAC_REQUIRE(l.block_names.size() == l.block_ids.size(), path << ": block_names and block_ids differ in size");
+    for (std::size_t i = 0; i < ne; ++i) {
+      SHELLFRAC_REQUIRE(l.element_block[i] >= 0 && l.element_block[i] < static_cast<int>(l.block_ids.size()),
+                        path << ": element " << l.element_gids[i] << " has block index " << l.element_block[i]);
+      SHELLFRAC_REQUIRE(l.element_gids[i] >= 0 && (l.element_gids[i] + 1) * npe <= exodus::max_stored_int,
+                        path << ": element gid " << l.element_gids[i] << " is out of the 32-bit Exodus id range");
+      SHELLFRAC_REQUIRE(i == 0 || l.element_gids[i - 1] < l.element_gids[i],
+                        path << ": element gids are not strictly ascending at " << l.element_gids[i]);
+    }
+    exodus::check_name_lengths(l.block_names, "element block", path);
+    exodus::check_name_lengths(l.nodal_names, "nodal variable", path);
+    exodus::check_name_lengths(l.element_names, "element variable", path);
+  }
+
+  void put_header(int id, const FileLayout& l) {
+    const std::string& path = path_;
+    const std::size_t ne = num_elements_;
+    // History column names may exceed Exodus' default 32 characters: the file declares the longest before its
+    // dimensions are defined, and stores them whole.
+    std::size_t longest = 0;
+    for (const auto& n : l.global_names) longest = std::max(longest, n.size());
+    SHELLFRAC_REQUIRE(longest <= max_global_name_length,
+                      path << ": a global variable name is longer than " << max_global_name_length << " characters");
+    if (longest > static_cast<std::size_t>(MAX_NAME_LENGTH)) ex_set_max_name_length(id, static_cast<int>(longest));
+
+    ex_init_params p{};
+    l.title.copy(p.title, MAX_LINE_LENGTH);
+    p.num_dim = 3;
+    p.num_nodes = static_cast<std::int64_t>(num_file_nodes_);
+    p.num_elem = static_cast<std::int64_t>(ne);
+    p.num_elem_blk = static_cast<std::int64_t>(l.block_ids.size());
+    p.num_node_sets = static_cast<std::int64_t>(l.node_sets.size());
+    p.num_side_sets = static_cast<std::int64_t>(l.side_sets.size());
+    SHELLFRAC_EXO_CHECK(ex_put_init_ext(id, &p), path);
+    if (l.nemesis) put_nemesis(id, *l.nemesis, l, path);
+    SHELLFRAC_EXO_CHECK(exodus::put_info(id, l.info), path);
+    SHELLFRAC_EXO_CHECK(put_qa(id), path << ": QA record");
+    SHELLFRAC_EXO_CHECK(put_coordinate_names(id), path << ": coordinate names");
+  }
+
+  /// One coordinate at a time (ex_put_coord skips the null arrays).
+  void put_coordinates(int id, const FileLayout& l) {
+    const std::string& path = path_;
+    std::vector<double> c(num_file_nodes_, 0.0);
+    for (int k = 0; k < 3; ++k) {
+      for (std::size_t n = 0; n < num_nodes_; ++n) c[n] = l.node_coords[n][k];
+      SHELLFRAC_EXO_CHECK(ex_put_coord(id, k == 0 ? c.data() : nullptr, k == 1 ? c.data() : nullptr,
+                                       k == 2 ? c.data() : nullptr),
+                          path);
+    }
+  }
+
+  /// Blocks: file elements are grouped by block; DG node i*npe + a belongs to (layout) element i. Then the node and
+  /// element id maps. Returns the 1-based file element of each layout element.
+  std::vector<std::int64_t> put_blocks_and_id_maps(int id, const FileLayout& l) {
+    const std::string& path = path_;
+    const int npe = l.nodes_per_element;
+    const std::size_t ne = num_elements_;
+    const char* type = npe == 3 ? "TRISHELL3" : "TRISHELL6";
+    std::vector<std::int64_t> elem_map, file_element(ne);
+    for (std::size_t b = 0; b < block_ids_.size(); ++b) {
+      const auto& elems = block_elements_[b];
+      SHELLFRAC_EXO_CHECK(ex_put_block(id, EX_ELEM_BLOCK, block_ids_[b], type,
+                                       static_cast<std::int64_t>(elems.size()), npe, 0, 0, 0),
+                          path << ": element block " << block_ids_[b]);
+      if (elems.empty()) continue;
+      std::vector<std::int64_t> conn;
+      for (std::size_t i : elems) {
+        for (int a = 0; a < npe; ++a) conn.push_back(static_cast<std::int64_t>(i * npe + a) + 1);
+        elem_map.push_back(l.element_gids[i] + 1);
+        file_element[i] = static_cast<std::int64_t>(elem_map.size());
+      }
+      SHELLFRAC_EXO_CHECK(ex_put_conn(id, EX_ELEM_BLOCK, block_ids_[b], conn.data(), nullptr, nullptr),
+                          path << ": element block " << block_ids_[b]);
+    }
+    SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_ELEM_BLOCK, l.block_names), path);
+    if (ne > 0) {
+      std::vector<std::int64_t> node_map(num_nodes_);
+      for (std::size_t i = 0; i < ne; ++i)
+        for (int a = 0; a < npe; ++a) node_map[i * npe + a] = l.element_gids[i] * npe + a + 1;
+      SHELLFRAC_EXO_CHECK(ex_put_id_map(id, EX_NODE_MAP, node_map.data()), path);
+      SHELLFRAC_EXO_CHECK(ex_put_id_map(id, EX_ELEM_MAP, elem_map.data()), path);
+    } else {
+      const std::int64_t placeholder_id = exodus::max_stored_int;
+      SHELLFRAC_EXO_CHECK(ex_put_id_map(id, EX_NODE_MAP, &placeholder_id), path);
+    }
+    return file_element;
+  }
+
+  void put_variable_names(int id, const FileLayout& l) {
+    const std::string& path = path_;
+    if (num_nodal_ > 0) {
+      SHELLFRAC_EXO_CHECK(ex_put_variable_param(id, EX_NODAL, static_cast<int>(num_nodal_)), path);
+      SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_NODAL, l.nodal_names, true), path);
+    }
+    if (num_element_vars_ > 0 && !block_ids_.empty()) {
+      SHELLFRAC_EXO_CHECK(ex_put_variable_param(id, EX_ELEM_BLOCK, static_cast<int>(num_element_vars_)), path);
+      SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_ELEM_BLOCK, l.element_names, true), path);
+      std::vector<int> truth;  // [block][variable]; empty blocks have no values
+      for (const auto& elems : block_elements_) truth.insert(truth.end(), num_element_vars_, elems.empty() ? 0 : 1);
+      SHELLFRAC_EXO_CHECK(ex_put_truth_table(id, EX_ELEM_BLOCK, static_cast<int>(block_ids_.size()),
+                                             static_cast<int>(num_element_vars_), truth.data()),
+                          path);
+    }
+    num_global_ = l.global_names.size();
+    if (num_global_ > 0) {
+      SHELLFRAC_EXO_CHECK(ex_put_variable_param(id, EX_GLOBAL, static_cast<int>(num_global_)), path);
+      SHELLFRAC_EXO_CHECK(exodus::put_names(id, EX_GLOBAL, l.global_names, true), path);
+    }
+  }
+
   exodus::File file_;
   std::string path_;
   std::size_t num_elements_ = 0, num_nodes_ = 0, num_nodal_ = 0, num_element_vars_ = 0, num_global_ = 0;
