@@ -8,12 +8,7 @@
 #include "cohesive_law_test_cases.hpp"
 #include "shellfrac/materials/cohesive_law.hpp"
 
-using shellfrac::materials::cohesive_tractions;
-using shellfrac::materials::CohesiveParams;
-using shellfrac::materials::CohesiveResult;
-using shellfrac::materials::crack_face_contact;
-using shellfrac::materials::effective_opening;
-using shellfrac::materials::equivalent_traction;
+using namespace shellfrac::materials;
 using namespace shellfrac::materials::cohesive_test;
 
 // With crack-face contact (Fracture->Crack Face Contact, theory.md §9.9) closing is not opening, and the crack

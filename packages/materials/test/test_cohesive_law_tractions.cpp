@@ -14,13 +14,7 @@
 #include "cohesive_law_test_cases.hpp"
 #include "shellfrac/materials/cohesive_law.hpp"
 
-using shellfrac::materials::cohesive_strength;
-using shellfrac::materials::cohesive_tractions;
-using shellfrac::materials::CohesiveParams;
-using shellfrac::materials::CohesiveResult;
-using shellfrac::materials::effective_opening;
-using shellfrac::materials::equivalent_traction;
-using shellfrac::materials::make_cohesive_params;
+using namespace shellfrac::materials;
 using namespace shellfrac::materials::cohesive_test;
 
 namespace {

@@ -11,12 +11,7 @@
 #include "resultant_plasticity_test_cases.hpp"
 #include "shellfrac/materials/resultant_plasticity.hpp"
 
-using shellfrac::materials::elastic_energy;
-using shellfrac::materials::equivalent_stress;
-using shellfrac::materials::PlasticSection;
-using shellfrac::materials::PlasticState;
-using shellfrac::materials::resultant_return_map;
-using shellfrac::materials::ReturnMapResult;
+using namespace shellfrac::materials;
 using namespace shellfrac::materials::plasticity_test;
 
 namespace {

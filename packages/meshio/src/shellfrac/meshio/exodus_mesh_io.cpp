@@ -259,15 +259,23 @@ class ExodusMeshReader {
   }
 
   void read_node_sets() {
+    read_index_sets(EX_NODE_SET, p_.num_node_sets, "node set", "nodeset", &mesh::NodeSet::nodes, num_nodes_, "node",
+                    m_.node_sets);
+  }
+
+  /// Node or element sets: each a sorted list of 0-based indices (`members`) below `n`.
+  template <class Set>
+  void read_index_sets(ex_entity_type type, std::int64_t count, const char* kind, const char* default_prefix,
+                       std::vector<GlobalId> Set::*members, std::int64_t n, const char* entity, std::vector<Set>& out) {
     std::vector<std::int64_t> entries;
-    for_each_set(EX_NODE_SET, p_.num_node_sets, "node set", "nodeset",
+    for_each_set(type, count, kind, default_prefix,
                  [&](std::int64_t set_id, const std::string& name, const std::string& what) {
-                   mesh::NodeSet ns;
-                   ns.name = name;
-                   ns.id = checked_id(set_id, path_, what.c_str());
-                   get_set(id_, EX_NODE_SET, set_id, entries, nullptr, path_, what, stored_bytes_);
-                   ns.nodes = to_sorted_indices(entries, num_nodes_, path_, what, "node");
-                   m_.node_sets.push_back(std::move(ns));
+                   Set set;
+                   set.name = name;
+                   set.id = checked_id(set_id, path_, what.c_str());
+                   get_set(id_, type, set_id, entries, nullptr, path_, what, stored_bytes_);
+                   set.*members = to_sorted_indices(entries, n, path_, what, entity);
+                   out.push_back(std::move(set));
                  });
   }
 
@@ -301,16 +309,8 @@ class ExodusMeshReader {
   }
 
   void read_element_sets() {
-    std::vector<std::int64_t> entries;
-    for_each_set(EX_ELEM_SET, p_.num_elem_sets, "element set", "elemset",
-                 [&](std::int64_t set_id, const std::string& name, const std::string& what) {
-                   mesh::ElementSet es;
-                   es.name = name;
-                   es.id = checked_id(set_id, path_, what.c_str());
-                   get_set(id_, EX_ELEM_SET, set_id, entries, nullptr, path_, what, stored_bytes_);
-                   es.elements = to_sorted_indices(entries, num_elem_, path_, what, "element");
-                   m_.element_sets.push_back(std::move(es));
-                 });
+    read_index_sets(EX_ELEM_SET, p_.num_elem_sets, "element set", "elemset", &mesh::ElementSet::elements, num_elem_,
+                    "element", m_.element_sets);
   }
 
   const std::string& path_;
