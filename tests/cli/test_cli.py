@@ -179,7 +179,7 @@ class Shellfrac(unittest.TestCase):
         r = run([SHELLFRAC, deck, "--restart", os.path.join(self.dir, checkpoint)], cwd=self.dir)
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertGreaterEqual(sum(1 for _ in open(history)), rows)
-        self.assertTrue(any(f.startswith("long.restart") for f in os.listdir(self.dir)), os.listdir(self.dir))
+        self.assertTrue(any(f.startswith("long.exo-s.") for f in os.listdir(self.dir)), os.listdir(self.dir))
         # a missing or foreign checkpoint is an input error naming the file
         r = run([SHELLFRAC, deck, "--restart", deck], cwd=self.dir)
         self.assertEqual(r.returncode, 1)

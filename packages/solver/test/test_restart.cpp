@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <regex>
 #include <functional>
 #include <vector>
 #include <sstream>
@@ -109,16 +110,20 @@ void expect_same(const std::string& reference, const std::string& broken, const 
   EXPECT_EQ(slurp(reference + "/run_history.csv"), slurp(broken + "/run_history.csv")) << what;
   EXPECT_EQ(slurp(reference + "/run_cracks.csv"), slurp(broken + "/run_cracks.csv")) << what << " (crack log)";
   EXPECT_NE(slurp(reference + "/run_cracks.csv").find('\n'), std::string::npos);
+  // The results (a file, or the base of a per-rank set <name>.<np>.<rank>) whose name begins with `stem`.
   const auto find_results = [](const std::string& dir, const std::string& stem) {
+    const std::regex rank_file(R"((.*)\.[0-9]+\.[0-9]+)");
     for (const auto& e : std::filesystem::directory_iterator(dir)) {
-      const std::string f = e.path().filename();
-      if (f.rfind(stem, 0) == 0 && f.find(".exo") != std::string::npos)
-        return dir + "/" + f.substr(0, f.find(".exo") + 4);
+      std::string f = e.path().filename();
+      if (f.rfind(stem, 0) != 0) continue;
+      std::smatch m;
+      if (std::regex_match(f, m, rank_file)) f = m[1];
+      return dir + "/" + f;
     }
     return std::string();
   };
   const auto rc = io::read_results(find_results(reference, "run.exo"));
-  const auto rb = io::read_results(find_results(broken, "run.restart"));
+  const auto rb = io::read_results(find_results(broken, "run.exo-s."));
   ASSERT_FALSE(rc.times.empty());
   ASSERT_FALSE(rb.times.empty());
   EXPECT_EQ(rc.times.back(), rb.times.back()) << what;

@@ -457,4 +457,13 @@ ExodusResults read_results(const std::string& path) {
   return read_results_files(files);
 }
 
+std::vector<double> read_result_times(const std::string& file) {
+  exodus::File f = exodus::open_read(file);
+  SHELLFRAC_INPUT_REQUIRE(f.is_open(), file << ": cannot open as an Exodus II file (" << exodus::last_error() << ")");
+  const std::int64_t n = checked_count(ex_inquire_int(f.id(), EX_INQ_TIME), file, "time step");
+  std::vector<double> times(static_cast<std::size_t>(n), 0.0);
+  if (n > 0) SHELLFRAC_EXO_INPUT_CHECK(ex_get_all_times(f.id(), times.data()), file << ": cannot read the times");
+  return times;
+}
+
 }  // namespace shellfrac::io

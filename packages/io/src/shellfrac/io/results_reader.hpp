@@ -39,6 +39,10 @@ ExodusResults read_results(const std::string& path);
 /// none). Throws InputError if the set is incomplete or several sets (different np) are present.
 std::vector<std::string> find_rank_files(const std::string& path);
 
+/// The output times of one Exodus file (its time steps, in file order), without reading anything else. Throws
+/// InputError naming the file if it cannot be read as Exodus.
+std::vector<double> read_result_times(const std::string& file);
+
 /// Reads the given files (e.g. find_rank_files(path)) as one data set, merged by element global id.
 ExodusResults read_results_files(const std::vector<std::string>& files);
 

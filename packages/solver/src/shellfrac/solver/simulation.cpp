@@ -212,6 +212,8 @@ void Simulation::restart_from_checkpoint() {
     restart_e0_ = e0->second;
     restart_marks_ = table_marks(header);
     restart_physics_ = PhysicsSummary::restored(header.scalars);
+    const auto results = header.strings.find("results");
+    if (results != header.strings.end()) restart_origin_ = results->second;
   });
   SHELLFRAC_INPUT_REQUIRE(dyn.time() + 0.5 * dyn.time_step() < deck_.time.end_time,
                           deck_.file << ": 'Time Integration->End Time' = " << deck_.time.end_time
@@ -335,8 +337,7 @@ RunSummary Simulation::run() {
   const RunLocks locks(deck_, comm_);  // before anything is written
   RunOutputs out(deck_, model_, results_sets_, probe_names_, probe_members_, summary_.restart_step, restart_marks_, e0,
                  comm_);
-  if (parallel::rank(comm_) == 0)
-    for (const auto& notice : out.notices()) std::cerr << "shellfrac: notice: " << notice << "\n";
+  print_notices(start_notices(out));
   if (restarted) out.resume_physics(restart_physics_);
   const auto& tp = deck_.time;
   OutputSchedule frames(tp);
@@ -402,9 +403,31 @@ RunSummary Simulation::run() {
   if (!history_written) out.write_history();
   if (!frame_written) out.write_frame();
   if (checkpointing && !summary_.stopped_by_signal) write_checkpoint();  // to continue later
+  print_notices(out.series_notices());
   complete_summary(out, checkpoints.last(),
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return summary_;
+}
+
+// What the user must know about the files at the start: RunOutputs' notices, and for a restart under another output
+// base than the run that wrote the checkpoint, where the steps before it are.
+std::vector<std::string> Simulation::start_notices(const RunOutputs& out) const {
+  std::vector<std::string> notices = out.notices();
+  const std::string base = deck_.output.path("");
+  if (summary_.restart_step < 0 || restart_origin_.empty() || restart_origin_ == files::resolved(base)) return notices;
+  std::ostringstream os;
+  os << "this restart writes its results under " << base << ", not under " << restart_origin_
+     << " as the run that wrote " << deck_.checkpoint.restart_from << ": its history and Exodus series begin at step "
+     << summary_.restart_step << " (t = " << model_.dynamics->time() << "), the steps before are in "
+     << restart_origin_ << "*; to continue that run's files, restart with its 'Output->Base Name' and "
+     << "'Output->Directory'";
+  notices.push_back(os.str());
+  return notices;
+}
+
+void Simulation::print_notices(const std::vector<std::string>& notices) const {
+  if (parallel::rank(comm_) == 0)
+    for (const auto& notice : notices) std::cerr << "shellfrac: notice: " << notice << "\n";
 }
 
 // The run's end in the summary: how the static relaxation ended, peak memory, steps and wall time, the files written.

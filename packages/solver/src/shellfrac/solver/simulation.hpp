@@ -78,6 +78,8 @@ class Simulation {
 
  private:
   void restart_from_checkpoint();
+  std::vector<std::string> start_notices(const RunOutputs& out) const;
+  void print_notices(const std::vector<std::string>& notices) const;
   void refuse_changed_physics_over_its_origin(const io::CheckpointData& header) const;
   void resolve_probes();
   void summarize();
@@ -97,8 +99,9 @@ class Simulation {
   ResultsSets results_sets_;  ///< the sets of the Exodus results, resolved at set-up
   RunSummary summary_;
   double restart_e0_ = 0;  ///< initial energy of the restarted run (for the balance error)
-  TableMarks restart_marks_;
-  PhysicsSummary restart_physics_;  ///< the physics summary as the checkpoint restarted from left it  ///< where the CSV tables stood at the checkpoint restarted from
+  TableMarks restart_marks_;        ///< where the CSV tables stood at the checkpoint restarted from
+  PhysicsSummary restart_physics_;  ///< the physics summary as the checkpoint restarted from left it
+  std::string restart_origin_;      ///< the <directory>/<base> of the run the checkpoint was written by ("" unknown)
   double progress_interval_ = 10;  ///< seconds between progress lines (Output->Progress Interval; 0 = none)
 };
 

@@ -18,6 +18,7 @@
 #include "shellfrac/solver/fracture/fracture.hpp"
 #include "shellfrac/solver/input/deck.hpp"
 #include "shellfrac/solver/input/mesh_sets.hpp"
+#include "shellfrac/solver/outputs/results_series.hpp"
 #include "shellfrac/solver/setup/model_setup.hpp"
 
 namespace shellfrac::solver {
@@ -182,6 +183,7 @@ void ResultPaths::name(const std::string& prefix) {
 ResultPaths ResultPaths::restarted(long step) const {
   ResultPaths r = *this;
   r.name(prefix_ + ".restart" + std::to_string(step));
+  r.exodus = restart_member(exodus, step);
   return r;
 }
 
@@ -212,17 +214,7 @@ RunOutputs::RunOutputs(const Deck& deck, RunModel& model, const ResultsSets& set
   const bool restarted = restart_step >= 0;
   const ResultPaths restart_paths = paths.restarted(std::max(restart_step, 0L));
   exodus_path_ = restarted ? restart_paths.exodus : paths.exodus;
-  // Results of an earlier run with another rank count would sit beside ours and confuse ParaView (which opens
-  // a per-rank set from any of its files): remove <base>.exo and every <base>.exo.<n>.<r> first.
-  parallel::on_root_then_agree(
-      [&] {
-        remove_stale_results(exodus_path_);
-        if (!restarted) {  // fragment and crack tables of an earlier run would mislead
-          remove_stale_result(paths.fragments);
-          remove_stale_result(paths.cracks);
-        }
-      },
-      0, comm);
+  parallel::on_root_then_agree([&] { prepare_result_files(paths, restarted); }, 0, comm);
   const auto& dm = *model.distributed;
   element_constant_.resize(2);
   for (LocalId le = 0; le < dm.num_owned(); ++le) {
@@ -267,6 +259,30 @@ RunOutputs::RunOutputs(const Deck& deck, RunModel& model, const ResultsSets& set
   cracks_ = table("cracks", "_cracks.csv", Fracture::crack_event_columns());
 }
 
+// Results of an earlier run with another rank count would sit beside ours and confuse ParaView (which opens a
+// per-rank set from any of its files): remove <base>.exo and every <base>.exo.<n>.<r> first; a new run also removes
+// the restarts of an earlier one (ParaView would open them as the continuation of ours). A restart looks at the
+// series it continues instead (results_series.hpp).
+void RunOutputs::prepare_result_files(const ResultPaths& paths, bool restarted) {
+  const int np = parallel::size(comm_);
+  remove_stale_results(exodus_path_);
+  if (!restarted) {  // fragment and crack tables of an earlier run would mislead
+    remove_restart_members(paths.exodus);
+    remove_stale_result(paths.fragments);
+    remove_stale_result(paths.cracks);
+    return;
+  }
+  restart_time_ = model_.dynamics->time();
+  later_frames_ = frames_after(paths.exodus, exodus_path_, np, restart_time_);
+  if (only_other_layouts(paths.exodus, np))
+    notices_.push_back("the results before this restart are not in this run's layout (" +
+                       (np > 1 ? std::to_string(np) + " per-rank files" : std::string("one file")) +
+                       "; another rank count, or joined): ParaView opens a run and its restarts as one series "
+                       "only when all are in one layout; join each per-rank set of the series into one file "
+                       "with shellfrac_exojoin (e.g. 'shellfrac_exojoin " + paths.exodus +
+                       "'), then open " + paths.exodus);
+}
+
 RunOutputs::~RunOutputs() = default;
 
 void RunOutputs::write_frame(bool fragment_rows) {
@@ -283,6 +299,11 @@ void RunOutputs::write_frame(bool fragment_rows) {
   std::vector<std::vector<double>> element = element_constant_;
   element.insert(element.end(), fields.begin(), fields.end());
   exodus_->write_step(dyn.time(), nodal, pick(std::move(element), element_written_), history_values(nullptr));
+  frame_times_.push_back(dyn.time());
+}
+
+std::vector<std::string> RunOutputs::series_notices() const {
+  return interleaving_notices(later_frames_, frame_times_, exodus_path_, restart_time_);
 }
 
 std::vector<double> RunOutputs::history_values(StepRecord* record) {

@@ -1,7 +1,8 @@
 #pragma once
 /// \file run_outputs.hpp
 /// The result files of a run (docs/output.md): DG Exodus frames (one file, or a per-rank set for np > 1; a
-/// restarted run opens <base>.restart<step>.exo), the history CSV, and with fracture the fragment table and the
+/// restarted run writes <base>.exo-s.<step>, which ParaView opens as the continuation of <base>.exo:
+/// results_series.hpp), the history CSV, and with fracture the fragment table and the
 /// crack log. A restarted run continues a CSV table only where the rows on disk are provably those its checkpoint
 /// was written after (TableMarks), else it starts a table of its own (docs/output.md, "Checkpoints and restart").
 #include <mpi.h>
@@ -16,6 +17,7 @@
 #include "shellfrac/io/results_writer.hpp"
 #include "shellfrac/io/history.hpp"
 #include "shellfrac/solver/outputs/physics_summary.hpp"
+#include "shellfrac/solver/outputs/results_series.hpp"
 
 namespace shellfrac::solver {
 
@@ -29,8 +31,8 @@ struct ResultPaths {
   std::string exodus, history, fragments, cracks, checkpoint;
   /// The run's lock file (<base>.lock): held while the run writes (core/files.hpp, RunLock).
   std::string lock;
-  /// The result names of a run restarted at `step` that cannot continue the original files:
-  /// <base>.restart<step>.exo, <base>.restart<step>_history.csv, ...
+  /// The result names of a run restarted at `step`: the Exodus series member <base>.exo-s.<step>, and for the
+  /// tables it cannot continue <base>.restart<step>_history.csv, ...
   ResultPaths restarted(long step) const;
   /// <directory>/<base>: the names above are it and a suffix.
   const std::string& prefix() const { return prefix_; }
@@ -64,7 +66,7 @@ class RunOutputs {
  public:
   /// Creates the files (removing stale results of an earlier run first) with the sets `sets` (results_sets). `e0`
   /// is the initial energy of the balance (the restart's, if restarted). A run restarted at `restart_step` (>= 0)
-  /// writes its Exodus frames to <base>.restart<step>.exo and continues each CSV table the checkpoint names (`marks`)
+  /// writes its Exodus frames to <base>.exo-s.<step> and continues each CSV table the checkpoint names (`marks`)
   /// if that file is one of this base's and its rows on disk are provably those the checkpoint was written after;
   /// otherwise the table on disk is left as it is and the run starts <base>_<table>.csv, or if that exists
   /// <base>.restart<step>_<table>.csv, and says so (`notices`) when a table it could have continued was not
@@ -89,8 +91,12 @@ class RunOutputs {
   std::string history_path() const;
   std::string fragments_path() const;
   std::string cracks_path() const;
-  /// What the user must know about the files (a restart that could not continue a table), on rank 0.
+  /// What the user must know about the files (a restart that could not continue a table, or whose results
+  /// ParaView cannot open with those before it), on rank 0.
   const std::vector<std::string>& notices() const { return notices_; }
+  /// At the end of a restarted run: the earlier results' frames after the restart's time that ParaView shows
+  /// between this run's (results_series.hpp, interleaving_notices), on rank 0.
+  std::vector<std::string> series_notices() const;
   /// The physics summary goes on from where the checkpoint a run restarted from left it.
   void resume_physics(const PhysicsSummary& p) { physics_ = p; }
   /// Completes the physics summary with the end state (fragments, peak plastic strain), writes it as
@@ -100,6 +106,8 @@ class RunOutputs {
   std::string summary_path() const;
 
  private:
+  /// Rank 0: removes what an earlier run left under our names, or (restarted) surveys the series continued.
+  void prepare_result_files(const ResultPaths& paths, bool restarted);
   /// The values of a history row of the current state (and its record, if `record`). Collective.
   std::vector<double> history_values(StepRecord* record);
   const Deck& deck_;
@@ -114,6 +122,9 @@ class RunOutputs {
   std::vector<int> nodal_written_, element_written_;   // the fields Output->Fields selects (all by default)
   GlobalId cracks_logged_ = -1;  // the count of activated edges the crack log was last written at
   std::vector<std::string> notices_;
+  double restart_time_ = 0;                ///< the time a restarted run started from
+  std::vector<LaterFrames> later_frames_;  ///< rank 0: the earlier results' frames after it
+  std::vector<double> frame_times_;        ///< rank 0: this run's frame times
   PhysicsSummary physics_;
   MPI_Comm comm_;
 };
