@@ -3,13 +3,13 @@
 default the fragment each element belongs to, else the owning rank), with a title (run, field, time), a legend
 for ids and a colour bar for values, beside the energy history and the fracture (or probe) history.
 
-usage: plot_results.py RESULTS.exo [--field F] [--step -1] [--history H.csv | --no-history] [--units SI|none]
-                       [-o out.png]
+usage: plot_results.py RESULTS.exo [--field F] [--step -1] [--history H.csv | --no-history]
+                       [--units auto|SI|mm-t-s|mm-kg-ms|mm-g-ms|in-lbf-s|none] [-o out.png]
 
 RESULTS.exo may be a single file or the base name of a per-rank set RESULTS.exo.<np>.<rank>. The history is
 <base>_history.csv beside the results unless --history names another. Ids (fragment_id, rank, block) get one
-distinct colour each and a legend; other fields a continuous colour map. Axis labels carry SI units (s, m, J)
-unless --units none (a deck in other consistent units). Reads Exodus II through netCDF4 (Debian: python3-netcdf4).
+distinct colour each and a legend; other fields a continuous colour map. Labels carry the units the run declared
+(the deck's `Units`, SI by default: s, m, kg, J; none: bare numbers); --units names others. Reads Exodus II through netCDF4 (Debian: python3-netcdf4).
 """
 import argparse
 import os
@@ -27,6 +27,7 @@ from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 from shellfrac_tools.exodus import ExodusFile  # noqa: E402
 from shellfrac_tools.results_files import ResultsError, rank_files  # noqa: E402
 from shellfrac_tools.tables import TableError, pieces_at, read_table  # noqa: E402
+from shellfrac_tools.units import SYSTEMS, chosen_units  # noqa: E402
 
 ID_FIELDS = ("fragment_id", "rank", "block")
 LEGEND_ENTRIES = 12  # ids listed by name; the rest summed up in one line
@@ -86,7 +87,7 @@ def fragment_motion(results, time):
         sys.exit("plot_results: %s" % e)
 
 
-def id_legend(field, values, colours, motion, si):
+def id_legend(field, values, colours, motion, units):
     """Legend handles: one per id with its element count (and a piece's mass and speed), the largest first; ids
     beyond LEGEND_ENTRIES in one line."""
     ids, counts = np.unique(values, return_counts=True)
@@ -97,7 +98,7 @@ def id_legend(field, values, colours, motion, si):
         text = "%s %d: %d elements" % (name, ids[i], counts[i])
         if field == "fragment_id" and int(ids[i]) in motion:
             m, v = motion[int(ids[i])]
-            text += ", %.3g%s at %.3g%s" % (m, " kg" if si else "", v, " m/s" if si else "")
+            text += ", %.3g%s at %.3g%s" % (m, suffix(units.mass), v, suffix(units.speed))
         return text
 
     handles = [Patch(color=colours[ids[i]], label=label(i)) for i in order[:LEGEND_ENTRIES]]
@@ -107,29 +108,37 @@ def id_legend(field, values, colours, motion, si):
     return handles
 
 
-def time_text(t, si):
-    """A time for a title: in s, ms or us when SI, else as a bare number."""
+def time_text(t, units):
+    """A time for a title: in the largest time unit it reaches (SI: s, ms or us), a bare number without units."""
     if t is None:
         return "no time step"
-    if not si:
+    if not units:
         return "t = %.4g" % t
-    for scale, unit in ((1.0, "s"), (1e-3, "ms"), (1e-6, "us")):
-        if abs(t) >= scale or unit == "us":
+    scales = units.time_scales()
+    for scale, unit in scales:
+        if abs(t) >= scale or unit == scales[-1][1]:
             return "t = %.4g %s" % (t / scale, unit)
 
 
-def time_axis(times, si):
-    """(scaled times, axis label): ms or us for short runs when SI."""
+def time_axis(times, units):
+    """(scaled times, axis label): the largest time unit the run's end reaches (SI: ms or us for short runs)."""
     end = float(np.max(np.abs(times))) if len(times) else 0.0
-    if not si:
+    if not units:
         return times, "time"
-    for scale, unit in ((1.0, "s"), (1e-3, "ms"), (1e-6, "us")):
-        if end >= scale or unit == "us":
+    scales = units.time_scales()
+    for scale, unit in scales:
+        if end >= scale or unit == scales[-1][1]:
             return times / scale, "time [%s]" % unit
 
 
-def unit(text, si):
-    return " [%s]" % text if si else ""
+def unit(text):
+    """An axis label's unit: " [m]", or nothing without declared units."""
+    return " [%s]" % text if text else ""
+
+
+def suffix(text):
+    """A value's unit in a legend: " kg", or nothing without declared units."""
+    return " " + text if text else ""
 
 
 def frame_3d(ax, tris):
@@ -147,7 +156,7 @@ def frame_3d(ax, tris):
         axis.set_major_locator(matplotlib.ticker.MaxNLocator(4))
 
 
-def draw_mesh(fig, position, tris, vals, field, si, motion):
+def draw_mesh(fig, position, tris, vals, field, units, motion):
     """The deformed mesh in its panel, coloured by the field: ids with a legend, values with a colour bar."""
     flat = np.ptp(tris[:, :, 2]) <= 1e-12 * max(np.ptp(tris[:, :, 0]), np.ptp(tris[:, :, 1]), 1e-300)
     ids = is_id_field(field, vals)
@@ -160,18 +169,18 @@ def draw_mesh(fig, position, tris, vals, field, si, motion):
         ax.add_collection(pc)
         ax.autoscale()
         ax.set_aspect("equal")
-        ax.set_xlabel("x" + unit("m", si))
-        ax.set_ylabel("y" + unit("m", si))
+        ax.set_xlabel("x" + unit(units.length))
+        ax.set_ylabel("y" + unit(units.length))
     else:
         ax = fig.add_subplot(*position, projection="3d")
         pc = Poly3DCollection(tris, edgecolors="k", linewidths=0.05)
         ax.add_collection3d(pc)
         frame_3d(ax, tris)
         for label, axis in zip("xyz", (ax.set_xlabel, ax.set_ylabel, ax.set_zlabel)):
-            axis(label + unit("m", si))
+            axis(label + unit(units.length))
     if ids:
         pc.set_facecolor(face)
-        ax.legend(handles=id_legend(field, vals, colours, motion, si), fontsize="small", loc="upper left",
+        ax.legend(handles=id_legend(field, vals, colours, motion, units), fontsize="small", loc="upper left",
                   bbox_to_anchor=(0.0, 1.0), framealpha=0.8)
     else:
         pc.set_array(vals)
@@ -181,15 +190,15 @@ def draw_mesh(fig, position, tris, vals, field, si, motion):
     return ax
 
 
-def draw_history(fig, hist, si):
+def draw_history(fig, hist, units):
     """The energy history (upper right) and the fracture counts, or else the probes' z displacement (lower right)."""
-    t, tlabel = time_axis(hist["time"], si)
+    t, tlabel = time_axis(hist["time"], units)
     hx = fig.add_subplot(2, 2, 2)
     for col in ENERGY_COLUMNS:
         if col in hist and np.any(hist[col] != 0):
             hx.plot(t, hist[col], label=col.replace("_", " "))
     hx.set_xlabel(tlabel)
-    hx.set_ylabel("energy" + unit("J", si))
+    hx.set_ylabel("energy" + unit(units.energy))
     hx.set_title("energies", fontsize=10)
     hx.legend(fontsize="small")
     hx.grid(alpha=0.3)
@@ -203,7 +212,7 @@ def draw_history(fig, hist, si):
     else:
         for col in (c for c in hist if c.endswith("_displ_z")):
             px.plot(t, hist[col], label=col[:-len("_displ_z")] + " (mean of the set)")
-        px.set_ylabel("displacement z" + unit("m", si))
+        px.set_ylabel("displacement z" + unit(units.length))
         px.set_title("probes", fontsize=10)
     px.set_xlabel(tlabel)
     if px.get_legend_handles_labels()[0]:
@@ -233,13 +242,13 @@ def main():
     ap.add_argument("--step", type=int, default=-1, help="output step index (default: the last)")
     ap.add_argument("--history", help="history CSV (default: <base>_history.csv beside the results)")
     ap.add_argument("--no-history", action="store_true", help="the mesh only")
-    ap.add_argument("--units", choices=("SI", "none"), default="SI", help="units of the axis labels (default SI)")
+    ap.add_argument("--units", choices=("auto",) + tuple(SYSTEMS), default="auto",
+                    help="units of the labels (default: those the run declared, 'Units' of its deck)")
     ap.add_argument("-o", "--output", help="PNG file (default: RESULTS with .png)")
     a = ap.parse_args()
-    si = a.units == "SI"
-
     try:
         files = rank_files(a.results)
+        units = chosen_units(a.units, a.results)
     except ResultsError as e:
         sys.exit("plot_results: %s" % e)
     field = a.field or ("fragment_id" if "fragment_id" in element_fields(files[0]) else "rank")
@@ -251,14 +260,14 @@ def main():
     with_history = len(hist.get("time", [])) > 1
 
     fig = plt.figure(figsize=(15 if with_history else 9, 6.5))
-    ax = draw_mesh(fig, (1, 2 if with_history else 1, 1), tris, vals, field, si, fragment_motion(a.results, time))
+    ax = draw_mesh(fig, (1, 2 if with_history else 1, 1), tris, vals, field, units, fragment_motion(a.results, time))
     run = os.path.basename(a.results)
     run = run[:-4] if run.endswith(".exo") else run
     ax.set_title("%s: %s at %s\n(%d elements, %d file%s; deformed, true scale)"
-                 % (run, field, time_text(time, si), len(tris), len(files), "s" if len(files) > 1 else ""),
+                 % (run, field, time_text(time, units), len(tris), len(files), "s" if len(files) > 1 else ""),
                  fontsize=10)
     if with_history:
-        draw_history(fig, hist, si)
+        draw_history(fig, hist, units)
     out = a.output or os.path.splitext(a.results)[0] + ".png"
     fig.tight_layout()
     tmp = out + ".part.png"

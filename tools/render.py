@@ -12,7 +12,7 @@ the chosen times and views; `--animate` writes an animated GIF over the frames.
 usage (Debian 12: tools/install-deps.sh --render installs paraview, python3-paraview, xvfb and python3-pil):
   tools/render.py RESULTS [--field damage] [--time T ...] [--view iso ...]
         [--focus X Y Z --direction DX DY DZ --distance D] [--zoom Z] [--range LO HI] [--size 1280 720]
-        [--title TEXT] [--units SI|none]
+        [--title TEXT] [--units auto|SI|mm-t-s|mm-kg-ms|mm-g-ms|in-lbf-s|none]
         [--animate OUT.gif --fps 8 --every 1] [-o OUT.png]
 
 RESULTS is `run.exo`, one file of a per-rank set (`run.exo.2.0`) or the set's base name (`run.exo`). Times are
@@ -71,6 +71,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # pvpython may n
 from shellfrac_tools.cli import fail  # noqa: E402
 from shellfrac_tools.results_files import ResultsError, rank_files  # noqa: E402
 from shellfrac_tools.tables import TableError, pieces_at  # noqa: E402
+from shellfrac_tools.units import SYSTEMS, chosen_units  # noqa: E402
 
 VIEWS = {  # direction from the focal point towards the camera, view-up
     "iso": ((-1.0, -1.0, 0.8), (0.0, 0.0, 1.0)),
@@ -116,14 +117,15 @@ _shellfrac_colour_index()
 """
 
 
-def piece_legend(pieces, n_colours, si):
+def piece_legend(pieces, n_colours, units):
     """({fragment id: colour index}, [(colour index, legend text)]) for the pieces of a frame, largest first: the
     largest grey (index 0), the next n_colours - 1 each its own colour, the rest summed up in one line (their colours
     repeat: 1 + a hash of the id)."""
     indices, legend = {}, []
     for k, (piece, elements, mass, speed) in enumerate(pieces[:n_colours]):
         indices[piece] = k
-        motion = ", %.3g%s at %.3g%s" % (mass, " kg" if si else "", speed, " m/s" if si else "")
+        motion = ", %.3g%s at %.3g%s" % (mass, " " + units.mass if units else "", speed,
+                                         " " + units.speed if units else "")
         legend.append((k, "piece %d: %d elements%s%s" % (piece, elements, motion, " (largest)" if k == 0 else "")))
     rest = pieces[n_colours:]
     if rest:
@@ -159,8 +161,9 @@ def parse():
     p.add_argument("--size", type=int, nargs=2, default=(1280, 720))
     p.add_argument("--title", help="title in the upper left corner (default: the run's name); the field and the time"
                    " are appended")
-    p.add_argument("--units", choices=("SI", "none"), default="SI", help="units of the legend (default SI)")
-    p.add_argument("--time-unit", default="ms", choices=("s", "ms", "us"), help="unit of the time label")
+    p.add_argument("--units", choices=("auto",) + tuple(SYSTEMS), default="auto",
+                   help="units of the labels (default: those the run declared, 'Units' of its deck)")
+    p.add_argument("--time-unit", default="ms", choices=("s", "ms", "us"), help="unit of the time label (SI runs)")
     p.add_argument("--animate", help="write an animated GIF over the frames to this file")
     p.add_argument("--fps", type=float, default=8.0)
     p.add_argument("--every", type=int, default=1, help="animate every k-th frame")
@@ -175,7 +178,10 @@ def parse():
     return a
 
 
-def frame_time_label(t, unit):
+def frame_time_label(t, unit, units):
+    """The time of a frame: in `unit` (s, ms or us) for an SI run, else in the run's own time unit (bare without)."""
+    if units.name != "SI":
+        return "t = %.4g%s" % (t, " " + units.time if units else "")
     scale = {"s": 1.0, "ms": 1e3, "us": 1e6}[unit]
     return "t = %.4g %s" % (t * scale, unit)
 
@@ -183,6 +189,10 @@ def frame_time_label(t, unit):
 class Scene:
     def __init__(self, args):
         self.args = args
+        try:
+            self.units = chosen_units(args.units, args.results)
+        except ResultsError as e:
+            fail(str(e))
         self.view = GetActiveViewOrCreate("RenderView")  # first: the render window before any filter
         self.view.ViewSize = list(args.size)
         self.reader = IOSSReader(FileName=[result_files(args.results)])
@@ -267,7 +277,7 @@ class Scene:
             pieces = pieces_at(self.args.results, t)
         except TableError as e:
             fail(str(e))
-        indices, entries = piece_legend(pieces, len(PALETTE) + 1, self.args.units == "SI")
+        indices, entries = piece_legend(pieces, len(PALETTE) + 1, self.units)
         self.source.Script = COLOUR_INDEX % {"field": "fragment_id", "n": len(PALETTE), "indices": repr(indices)}
         self.legend(entries or [(0, "")])
 
@@ -291,7 +301,7 @@ class Scene:
                     lo, hi = 0.0, builtins.max(hi, 1e-12 if self.args.field == "eq_plastic_strain" else 1.0)
             self.lut.RescaleTransferFunction(lo, builtins.max(hi, lo + 1e-30))
         title = self.args.title if self.args.title is not None else run_name(self.args.results)
-        self.label.Text = "%s: %s at %s%s" % (title, self.args.field, frame_time_label(t, self.args.time_unit),
+        self.label.Text = "%s: %s at %s%s" % (title, self.args.field, frame_time_label(t, self.args.time_unit, self.units),
                                               getattr(self, "legend_note", ""))
 
     def aim(self, view_name):

@@ -228,7 +228,9 @@ class HostileDeck(unittest.TestCase):
         deck = self.deck("soft.xml", ('value="70.0e9"', 'value="1e-300"'), ("{0.0, 0.0, 1.0}", "{0.0, 0.0, 0.0}"))
         r = run([SHELLFRAC, "--check", deck], cwd=self.dir, np=2)
         self.assertEqual(r.returncode, 0, r.stderr)
-        self.assertEqual(r.stderr.count("shellfrac: warning: "), 1, r.stderr)
+        self.assertEqual(r.stderr.count("shellfrac: warning: "), 2, r.stderr)
+        self.assertIn("shellfrac: warning: soft.xml: 'Materials->aluminium->Young's Modulus' = 1e-300 Pa is below "
+                      "what solids have (100000 to 1.5e+12 Pa) in the declared 'Units' = SI", r.stderr)
         self.assertRegex(r.stderr, r"shellfrac: warning: soft.xml: the time step [0-9.e+]+ is more than twice "
                                    r"'Time Integration->End Time' = 2e-05, so no step is taken and only the initial "
                                    r"state is written \(are Young's Modulus and Density right\?\)")

@@ -22,7 +22,8 @@ import unittest
 import numpy as np
 
 PROJECT = sys.argv.pop(1) if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
-import fracture_summary  # noqa: E402  (tools/ on PYTHONPATH: ctest sets it)
+import fracture_summary  # noqa: E402
+from shellfrac_tools.units import SYSTEMS  # noqa: E402  (tools/ on PYTHONPATH: ctest sets it)
 import fragmentation_study  # noqa: E402
 import plot_results  # noqa: E402
 import scaling  # noqa: E402
@@ -204,11 +205,12 @@ class PictureColoursAndLabels(unittest.TestCase):
         colours = plot_results.id_colours(values)
         self.assertEqual(len(set(colours.values())), 3)
         motion = {3: (0.0835, 221.0), 1: (0.0022, 3.91), 79: (0.0022, 3.91)}
-        labels = [h.get_label() for h in plot_results.id_legend("fragment_id", values, colours, motion, True)]
+        labels = [h.get_label() for h in plot_results.id_legend("fragment_id", values, colours, motion, SYSTEMS["SI"])]
         self.assertEqual(labels[0], "piece 3: 380 elements, 0.0835 kg at 221 m/s")  # the largest first
         self.assertEqual(len(labels), 3)
         many = np.arange(30.0)
-        labels = [h.get_label() for h in plot_results.id_legend("rank", many, plot_results.id_colours(many), {}, True)]
+        labels = [h.get_label() for h in plot_results.id_legend("rank", many, plot_results.id_colours(many), {},
+                                                          SYSTEMS["SI"])]
         self.assertEqual(len(labels), plot_results.LEGEND_ENTRIES + 1)
         self.assertEqual(labels[-1], "... 18 more (18 elements)")
 
@@ -233,13 +235,18 @@ class PictureColoursAndLabels(unittest.TestCase):
         self.assertFalse(plot_results.is_id_field("damage", np.linspace(0.0, 1.0, 50)))
 
     def test_times_in_readable_units(self):
-        self.assertEqual(plot_results.time_text(9.995e-5, True), "t = 99.95 us")
-        self.assertEqual(plot_results.time_text(0.0025, True), "t = 2.5 ms")
-        self.assertEqual(plot_results.time_text(0.3, False), "t = 0.3")
-        t, label = plot_results.time_axis(np.array([0.0, 1e-4]), True)
+        si, mm_t_s, mm_kg_ms, none = (SYSTEMS[n] for n in ("SI", "mm-t-s", "mm-kg-ms", "none"))
+        self.assertEqual(plot_results.time_text(9.995e-5, si), "t = 99.95 us")
+        self.assertEqual(plot_results.time_text(0.0025, si), "t = 2.5 ms")
+        self.assertEqual(plot_results.time_text(0.3, none), "t = 0.3")
+        self.assertEqual(plot_results.time_text(0.0025, mm_t_s), "t = 0.0025 s")
+        self.assertEqual(plot_results.time_text(0.5, mm_kg_ms), "t = 500 us")  # 0.5 ms
+        t, label = plot_results.time_axis(np.array([0.0, 1e-4]), si)
         self.assertEqual(label, "time [us]")
         self.assertAlmostEqual(t[-1], 100.0)
-
+        self.assertEqual(plot_results.unit(mm_t_s.length), " [mm]")
+        self.assertEqual(plot_results.unit(none.length), "")
+        self.assertEqual(mm_kg_ms.speed, "mm/ms")
 
 if __name__ == "__main__":
     unittest.main(verbosity=1)

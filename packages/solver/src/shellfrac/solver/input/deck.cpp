@@ -11,6 +11,7 @@
 #include "shellfrac/core/printable_text.hpp"
 #include "shellfrac/decomposition/partitioner.hpp"
 #include "shellfrac/solver/input/element_fields.hpp"
+#include "shellfrac/solver/input/units.hpp"
 
 namespace shellfrac::solver {
 
@@ -240,8 +241,29 @@ Teuchos::RCP<const Teuchos::ParameterList> CheckpointParams::valid_parameters() 
   return pl;
 }
 
+namespace {
+
+/// The top-level `Units` (units.hpp): one of the known systems, SI by default.
+void set_units_parameter(Teuchos::ParameterList& pl) {
+  std::vector<std::string> names;
+  for (const auto& u : unit_systems()) names.push_back(u.name);
+  params::set_choice(pl, "Units", "SI",
+                     "The deck's consistent system of units, named in the results (Exodus information, "
+                     "<base>_summary.json, the tools' labels): SI (m, kg, s; N, Pa, J), mm-t-s (mm, t, s; N, MPa, mJ), "
+                     "mm-kg-ms (mm, kg, ms; kN, GPa, J), mm-g-ms (mm, g, ms; N, MPa, mJ), in-lbf-s (in, lbf s^2/in, "
+                     "s; lbf, psi, in lbf), none (not declared). A density, modulus, strength, fracture energy or "
+                     "thickness outside what real shells have in the declared system is warned about, naming it "
+                     "(SI ranges: density 1 to 3e4 kg/m^3, Young's modulus 1e5 to 1.5e12 Pa, yield and cohesive "
+                     "strength 1e5 to 1e11 Pa, fracture energy 0.01 to 1e7 J/m^2, thickness 1e-6 to 1 m); none: no "
+                     "check, no unit labels",
+                     names);
+}
+
+}  // namespace
+
 Teuchos::RCP<const Teuchos::ParameterList> Deck::valid_parameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("shellfrac"));
+  set_units_parameter(*pl);
   pl->set("Mesh", *MeshParams::valid_parameters(), "The mesh: a file or a built-in generator");
   auto& blocks = pl->sublist("Blocks", false, "One sublist per element block of the mesh, named as the block");
   blocks.set("shell", *materials::BlockParams::valid_parameters());
@@ -281,12 +303,14 @@ Deck Deck::from_parameters(const Teuchos::RCP<Teuchos::ParameterList>& deck, con
   params::check_printable(pl, ctx);  // names and text go into result files and messages
   // Top level: only the known sublists; user-named children of Blocks/Materials are validated one by one.
   Teuchos::ParameterList top("shellfrac");
+  set_units_parameter(top);
   for (const char* name : {"Mesh", "Blocks", "Materials", "Partitioning", "Output", "Checkpoint", "Discretization",
                            "Time Integration", "Fracture", "Contact", "Boundary Conditions", "Initial Conditions",
                            "Loads", "Regions"})
     top.sublist(name);
   params::validate(pl, top, ctx);
   require_sections(pl, ctx);
+  d.units = pl.get<std::string>("Units");
   d.mesh = MeshParams::from_parameters(pl.sublist("Mesh"), ctx / "Mesh", directory_of(file));
   read_sections(pl, ctx, d);
   d.partition = std::make_shared<decomposition::PartitionParams>(

@@ -54,6 +54,7 @@ struct CheckpointParams {
 /// The whole validated deck, as plain structs.
 struct Deck {
   std::string file;  ///< the deck's path (or a label for decks built in memory)
+  std::string units = "SI";  ///< the declared system of units (`Units`; units.hpp), "none" if not declared
   MeshParams mesh;
   std::map<std::string, materials::BlockParams> blocks;
   std::map<std::string, materials::MaterialParams> materials;

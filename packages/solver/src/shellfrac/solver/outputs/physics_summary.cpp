@@ -71,9 +71,10 @@ void PhysicsSummary::observe_fragments(const std::vector<std::vector<double>>& t
   }
 }
 
-std::string PhysicsSummary::json(const std::string& deck, double end_time) const {
+std::string PhysicsSummary::json(const std::string& deck, const std::string& units, double end_time) const {
   std::ostringstream os;
-  os << "{\n  \"deck\": " << quoted(deck) << ",\n  \"time\": " << number(end_time) << ",\n"
+  os << "{\n  \"deck\": " << quoted(deck) << ",\n  \"units\": " << quoted(units) << ",\n  \"time\": "
+     << number(end_time) << ",\n"
      << "  \"largest_energy_balance_error\": " << number(relative_balance_error()) << ",\n"
      << "  \"largest_energy_balance_error_time\": " << number(largest_balance_error_time) << ",\n"
      << "  \"largest_energy_put_in\": " << number(largest_energy_put_in) << ",\n"

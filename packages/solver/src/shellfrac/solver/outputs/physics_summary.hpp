@@ -37,8 +37,9 @@ struct PhysicsSummary {
   /// The fragment table at the end (rows: fragment_id, elements, mass, com x/y/z, momentum x/y/z).
   void observe_fragments(const std::vector<std::vector<double>>& table);
 
-  /// The summary as a small JSON object (the run's deck and time added), numbers with 17 digits, null for "none".
-  std::string json(const std::string& deck, double end_time) const;
+  /// The summary as a small JSON object (the run's deck, its declared units and time added), numbers with 17 digits,
+  /// null for "none".
+  std::string json(const std::string& deck, const std::string& units, double end_time) const;
   /// The console lines ("  physics: ..."), one per topic.
   std::string text() const;
 

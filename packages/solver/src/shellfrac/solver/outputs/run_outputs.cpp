@@ -17,6 +17,7 @@
 #include "shellfrac/solver/dynamics/shell_dynamics.hpp"
 #include "shellfrac/solver/fracture/fracture.hpp"
 #include "shellfrac/solver/input/deck.hpp"
+#include "shellfrac/solver/input/units.hpp"
 #include "shellfrac/solver/input/mesh_sets.hpp"
 #include "shellfrac/solver/outputs/results_series.hpp"
 #include "shellfrac/solver/setup/model_setup.hpp"
@@ -25,16 +26,19 @@ namespace shellfrac::solver {
 
 namespace {
 
-/// The program, the deck's name and the digest of its expanded text, then the expanded deck, as Exodus
+/// The program, the deck's name, its units and the digest of its expanded text, then the expanded deck, as Exodus
 /// information records (at most 80 characters each).
-std::vector<std::string> info_records(const Teuchos::ParameterList& deck, const std::string& file) {
+std::vector<std::string> info_records(const Teuchos::ParameterList& deck, const std::string& file,
+                                      const std::string& units) {
   Teuchos::ParameterList pl = deck;
   params::strip_validators(pl);
   std::ostringstream os;
   Teuchos::writeParameterListToXmlOStream(pl, os);
   Digest digest;
   digest.add(os.str());
-  std::vector<std::string> lines = {std::string("shellfrac ") + shellfrac::version, "deck: " + file, "expanded deck digest: " + digest.hex()};
+  std::vector<std::string> lines = {std::string("shellfrac ") + shellfrac::version, "deck: " + file,
+                                    "units: " + unit_system(units).description(),
+                                    "expanded deck digest: " + digest.hex()};
   std::istringstream is(os.str());
   for (std::string line; std::getline(is, line);)
     for (std::size_t i = 0; i < line.size() || i == 0; i += 80) lines.push_back(line.substr(i, 80));
@@ -130,7 +134,7 @@ io::ResultsLayout results_layout(const Deck& deck, const RunModel& model, const 
   layout.block_names = model.block_names, layout.block_ids = model.block_ids;
   layout.nodal_vectors = pick(nodal_result_names(), written(nodal_result_names(), deck.output.fields));
   layout.element_scalars = pick(element_result_names(), written(element_result_names(), deck.output.fields));
-  layout.info = info_records(*deck.expanded, deck.file);
+  layout.info = info_records(*deck.expanded, deck.file, deck.units);
   for (const auto& c : columns) layout.global_variables.push_back(c.substr(0, io::max_global_name_length));
   layout.element_gids.reserve(std::size_t(dm.num_owned())), layout.element_block.reserve(std::size_t(dm.num_owned()));
   layout.node_coords.reserve(std::size_t(dm.num_owned()) * std::size_t(dm.nodes_per_element()));
@@ -344,7 +348,7 @@ const PhysicsSummary& RunOutputs::finish_physics() {
   physics_.fracture = dyn.fracture(), physics_.plasticity = dyn.plasticity();
   if (physics_.fracture) physics_.observe_fragments(dyn.fragment_table());
   physics_.peak_plastic_strain = dyn.peak_plastic_strain();
-  if (parallel::rank(comm_) == 0) write_whole_file(summary_path(), physics_.json(deck_.file, dyn.time()));
+  if (parallel::rank(comm_) == 0) write_whole_file(summary_path(), physics_.json(deck_.file, deck_.units, dyn.time()));
   return physics_;
 }
 

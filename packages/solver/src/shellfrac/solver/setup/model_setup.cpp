@@ -15,6 +15,7 @@
 #include "shellfrac/mesh/serial_mesh.hpp"
 #include "shellfrac/solver/dynamics/shell_dynamics.hpp"
 #include "shellfrac/solver/input/deck.hpp"
+#include "shellfrac/solver/input/units.hpp"
 #include "shellfrac/solver/setup/stop_signals.hpp"
 
 namespace shellfrac::solver {
@@ -98,7 +99,8 @@ std::vector<std::string> thickness_warnings(const Deck& deck, const mesh::Serial
 constexpr double few_steps = 10;
 
 std::vector<std::string> model_warnings(const Deck& deck, const RunModel& r) {
-  std::vector<std::string> out = thickness_warnings(deck, *r.mesh);
+  std::vector<std::string> out = implausible_constants(deck);
+  for (auto& w : thickness_warnings(deck, *r.mesh)) out.push_back(std::move(w));
   const double dt = r.dynamics->time_step(), end = deck.time.end_time;
   if (end > 0 && end <= 0.5 * dt) {  // the time loop steps while t + dt/2 < End Time
     std::ostringstream os;
