@@ -301,7 +301,8 @@ class Scene:
                     lo, hi = 0.0, builtins.max(hi, 1e-12 if self.args.field == "eq_plastic_strain" else 1.0)
             self.lut.RescaleTransferFunction(lo, builtins.max(hi, lo + 1e-30))
         title = self.args.title if self.args.title is not None else run_name(self.args.results)
-        self.label.Text = "%s: %s at %s%s" % (title, self.args.field, frame_time_label(t, self.args.time_unit, self.units),
+        time = frame_time_label(t, self.args.time_unit, self.units)
+        self.label.Text = "%s: %s at %s%s" % (title, self.args.field, time,
                                               getattr(self, "legend_note", ""))
 
     def aim(self, view_name):
@@ -392,7 +393,8 @@ def main():
             scene.aim(v)
             name = output_name(args.output, v, t, several)
             scene.save(name)
-            print("render.py: wrote %s (%s, %s view, %s)" % (name, args.field, v, frame_time_label(t, args.time_unit)))
+            print("render.py: wrote %s (%s, %s view, %s)"
+                  % (name, args.field, v, frame_time_label(t, args.time_unit, scene.units)))
     if args.animate:
         import tempfile
         frames = []
