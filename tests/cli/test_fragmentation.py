@@ -175,6 +175,15 @@ class Ring(unittest.TestCase):
                                os.path.join(outputs[3], "ring.exo")], capture_output=True, text=True, timeout=300)
         self.assertEqual(plot.returncode, 0, plot.stdout + plot.stderr)
         self.assertGreater(os.path.getsize(os.path.join(outputs[3], "ring.png")), 10000)
+        # ... and in ParaView (tools/render.py), where it is installed: the pieces' legend in the declared units.
+        if shutil.which("pvpython"):
+            picture = os.path.join(outputs[3], "ring_render.png")
+            render = subprocess.run(["/usr/bin/python3", os.path.join(SRC, "tools", "render.py"),
+                                     os.path.join(outputs[3], "ring.exo"), "--field", "fragment_id", "-o", picture],
+                                    capture_output=True, text=True, timeout=600)
+            self.assertEqual(render.returncode, 0, render.stdout + render.stderr)
+            self.assertIn("render.py: wrote %s (fragment_id, iso view, t = " % picture, render.stdout)
+            self.assertGreater(os.path.getsize(picture), 10000)
         for np in (2, 3):
             self.assertEqual(self.summary_of(outputs[np]), summary, f"the run summary differs between 1 and {np} ranks")
         # Restart the 3-rank run's first checkpoint on 2 ranks in a copy of its directory.
