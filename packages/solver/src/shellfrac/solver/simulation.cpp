@@ -31,10 +31,8 @@ namespace {
 /// within half a step of the next output time.
 class OutputSchedule {
  public:
-  OutputSchedule(const TimeParams& tp)
-      : interval_(tp.output_interval > 0 ? tp.output_interval : tp.end_time), end_(tp.end_time) {
-    next_ = interval_;
-  }
+  /// Outputs every `interval` of time up to `end`.
+  OutputSchedule(double interval, double end) : interval_(interval), end_(end), next_(interval) {}
   bool due(double t, double dt) const { return t >= next_ - 0.5 * dt; }
   /// Where a step from t of the time step dt must end to land on the next output time or on End Time (Exact
   /// Output Times), or 0 if a whole step passes neither. An output time within 1e-6 dt of End Time is End Time
@@ -57,6 +55,33 @@ class OutputSchedule {
  private:
   double interval_, end_, next_;
 };
+
+/// When history rows are due: every History Interval steps, or with a History Time Interval at the first step at or
+/// past each multiple of it.
+class HistorySchedule {
+ public:
+  explicit HistorySchedule(const TimeParams& tp)
+      : steps_(tp.history_interval),
+        by_time_(tp.history_time_interval > 0),
+        times_(by_time_ ? tp.history_time_interval : tp.end_time, tp.end_time) {}
+  /// Whether a row is due at the end of the step to (step, t) of the time step dt; moves past it if so.
+  bool due(long step, double t, double dt) {
+    if (!by_time_) return step % steps_ == 0;
+    if (!times_.due(t, dt)) return false;
+    times_.pass(t, dt);
+    return true;
+  }
+  /// A restarted run: its first row (the checkpoint's) is written; the next one is after t.
+  void pass(double t, double dt) { times_.pass(t, dt); }
+
+ private:
+  int steps_;
+  bool by_time_;
+  OutputSchedule times_;
+};
+
+/// The energy the balance starts from: kinetic, strain and penalty energy of the initial state.
+double energy_of_the_state(const StepRecord& r) { return r.kinetic + r.strain + r.penalty; }
 
 enum class CheckpointAction { none, write, write_and_stop };
 
@@ -115,7 +140,9 @@ double estimated_result_bytes(const Deck& deck, GlobalId elements, long steps, d
   const double scalars = fields.empty() ? double(element_result_names().size()) : double(fields.size()) - vectors;
   const double per_frame = dg_nodes * 3 * 8 * vectors + double(elements) * scalars * 8;
   const double columns = 30 + 6 * double(deck.output.probes.size() + deck.boundary_conditions.size());
-  const double rows = double(steps) / tp.history_interval + 2;
+  const double rows = (tp.history_time_interval > 0
+                           ? std::min(double(steps), std::floor((tp.end_time - t) / tp.history_time_interval))
+                           : double(steps) / tp.history_interval) + 2;
   return fixed + frames * per_frame + rows * columns * 16;
 }
 
@@ -332,18 +359,19 @@ std::string Simulation::cracks_path() const { return ResultPaths(deck_).cracks; 
 RunSummary Simulation::run() {
   auto& dyn = *model_.dynamics;
   const bool restarted = summary_.restart_step >= 0;
-  const StepRecord r0 = dyn.record();
-  const double e0 = restarted ? restart_e0_ : r0.kinetic + r0.strain + r0.penalty;
+  const double e0 = restarted ? restart_e0_ : energy_of_the_state(dyn.record());
   const RunLocks locks(deck_, comm_);  // before anything is written
   RunOutputs out(deck_, model_, results_sets_, probe_names_, probe_members_, summary_.restart_step, restart_marks_, e0,
                  comm_);
   print_notices(start_notices(out));
   if (restarted) out.resume_physics(restart_physics_);
   const auto& tp = deck_.time;
-  OutputSchedule frames(tp);
+  OutputSchedule frames(tp.output_interval > 0 ? tp.output_interval : tp.end_time, tp.end_time);
+  HistorySchedule rows(tp);
   if (restarted) {
     out.write_frame(false);  // the restart state opens the new Exodus set; history and fragments already have it
     frames.pass(dyn.time(), dyn.time_step());
+    rows.pass(dyn.time(), dyn.time_step());
   } else {
     out.write_frame();
     out.write_history();
@@ -387,7 +415,7 @@ RunSummary Simulation::run() {
       throw NumericalError(stop_at_blow_up(e, checkpoints, last_good, on_disk));
     }
     if (last_good && dyn.step_count() % 50 == 0) keep_last_good();
-    history_written = dyn.step_count() % tp.history_interval == 0;
+    history_written = rows.due(dyn.step_count(), dyn.time(), dyn.time_step());
     if (history_written) out.write_history();
     frame_written = frames.due(dyn.time(), dyn.time_step());
     if (frame_written) out.write_frame(), frames.pass(dyn.time(), dyn.time_step());

@@ -60,6 +60,10 @@ Teuchos::RCP<const Teuchos::ParameterList> TimeParams::valid_parameters() {
   pl->set("Output Interval", 0.0, "Time between Exodus outputs [time]; 0 = first and last step only",
           params::non_negative_double());
   pl->set("History Interval", 1, "Steps between rows of the history CSV", params::int_range(1, 1 << 30));
+  pl->set("History Time Interval", 0.0,
+          "Time between rows of the history CSV [time]: a row at the first step at or past each multiple (and the "
+          "first and last steps); 0 = by History Interval (steps). Give one of the two",
+          params::non_negative_double());
   pl->set("Exact Output Times", false,
           "Shorten the step that would pass an output time (a multiple of Output Interval, or End Time) so that it "
           "ends on it: frames at the exact output times and a last frame at End Time. The step sequence then depends "
@@ -97,6 +101,10 @@ TimeParams TimeParams::from_parameters(Teuchos::ParameterList& pl, const params:
   t.maximum_steps = pl.get<double>("Maximum Steps");
   t.output_interval = pl.get<double>("Output Interval");
   t.history_interval = pl.get<int>("History Interval");
+  t.history_time_interval = pl.get<double>("History Time Interval");
+  SHELLFRAC_INPUT_REQUIRE(t.history_time_interval == 0 || t.history_interval == 1,
+                          ctx.file << ": '" << ctx.path << "': give either a History Interval (steps) or a History "
+                                   << "Time Interval, not both");
   t.exact_output_times = pl.get<bool>("Exact Output Times");
   t.mass_damping = pl.get<double>("Mass Damping");
   t.static_relaxation = pl.get<bool>("Static Relaxation");

@@ -33,6 +33,7 @@ struct TimeParams {
   double output_interval = 0.0;  ///< time between Exodus outputs; 0 = first and last step only
   bool exact_output_times = false;  ///< steps shortened to end on the output times and on End Time
   int history_interval = 1;      ///< steps between history rows
+  double history_time_interval = 0;  ///< time between history rows (0: by history_interval)
   double mass_damping = 0.0;     ///< alpha of the damping force alpha m v (dynamic relaxation); 0 = none
   bool static_relaxation = false;  ///< find the static state: kinetic-energy peak resets, stop on the residual
   double relaxation_tolerance = 1e-6;  ///< stop when |residual| <= tolerance x |load| (static relaxation)

@@ -23,6 +23,7 @@ const std::set<std::string> free_on_restart = {
     "Time Integration->End Time",
     "Time Integration->Output Interval",
     "Time Integration->History Interval",
+    "Time Integration->History Time Interval",
     "Time Integration->Exact Output Times",
     "Time Integration->Time Step",
     "Time Integration->Safety Factor",
@@ -208,7 +209,7 @@ void RestartFingerprint::check(const io::CheckpointData& data, const std::string
   SHELLFRAC_INPUT_REQUIRE(diff.empty(),
                           file << ": the deck's physics differ from the run that wrote the checkpoint: " << diff
                                << ". To continue with changed physics on purpose, add --allow-physics-change (End "
-                                  "Time, Output Interval, History Interval, Exact Output Times, Time Step, Safety Factor and the Output, "
+                                  "Time, Output Interval, History Interval, History Time Interval, Exact Output Times, Time Step, Safety Factor and the Output, "
                                   "Checkpoint, Partitioning and Initial Conditions sublists may change freely)");
 }
 
