@@ -13,6 +13,7 @@ distinct colour each and a legend; other fields a continuous colour map. Labels 
 """
 import argparse
 import os
+import re
 import sys
 
 import matplotlib
@@ -211,9 +212,11 @@ def draw_history(fig, hist, units):
         px.set_title("fracture", fontsize=10)
     else:
         for col in (c for c in hist if c.endswith("_displ_z")):
-            px.plot(t, hist[col], label=col[:-len("_displ_z")] + " (mean of the set)")
+            name = col[:-len("_displ_z")]
+            px.plot(t, hist[col], label=name + (" (History Nodes)" if re.fullmatch(r"node\d+", name) else
+                                                " (mean of the set)"))
         px.set_ylabel("displacement z" + unit(units.length))
-        px.set_title("probes", fontsize=10)
+        px.set_title("probes and nodes", fontsize=10)
     px.set_xlabel(tlabel)
     if px.get_legend_handles_labels()[0]:
         px.legend(fontsize="small")

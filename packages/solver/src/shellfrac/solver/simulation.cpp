@@ -139,7 +139,9 @@ double estimated_result_bytes(const Deck& deck, GlobalId elements, long steps, d
   }));
   const double scalars = fields.empty() ? double(element_result_names().size()) : double(fields.size()) - vectors;
   const double per_frame = dg_nodes * 3 * 8 * vectors + double(elements) * scalars * 8;
-  const double columns = 30 + 6 * double(deck.output.probes.size() + deck.boundary_conditions.size());
+  const double columns = 30 + 6 * double(deck.output.probes.size() + deck.boundary_conditions.size()) +
+                        9 * double(deck.output.history_nodes.size()) + 10 * double(deck.output.history_elements.size()) +
+                        (deck.output.block_energies ? 3 * double(deck.blocks.size()) : 0);
   const double rows = (tp.history_time_interval > 0
                            ? std::min(double(steps), std::floor((tp.end_time - t) / tp.history_time_interval))
                            : double(steps) / tp.history_interval) + 2;
@@ -215,7 +217,7 @@ Simulation::Simulation(const std::string& deck_file, MPI_Comm comm, const std::s
   model_ = build_run_model(deck_, comm);
   fingerprint_ = RestartFingerprint::of(deck_, *model_.distributed, *model_.mesh);
   progress_interval_ = deck_.output.progress_interval;
-  resolve_probes();
+  resolve_history_points();
   results_sets_ = results_sets(deck_, model_);
   summarize();
   model_.release_global_mesh();  // from here on a rank holds only its part of the mesh
@@ -269,14 +271,18 @@ void Simulation::refuse_changed_physics_over_its_origin(const io::CheckpointData
                                         "another 'Checkpoint->File'");
 }
 
-void Simulation::resolve_probes() {
+void Simulation::resolve_history_points() {
   const MeshSets sets(*model_.mesh, deck_.file, deck_.regions);
   summary_.regions = sets.region_sizes();
+  HistoryPoints& h = history_points_;
   for (const auto& name : deck_.output.probes) {
-    probe_members_.push_back(sets.node_set("'Output->Probes'", name, false));
-    sets.require_some("'Output->Probes'", name, probe_members_.back());
-    probe_names_.push_back(name);
+    h.probe_members.push_back(sets.node_set("'Output->Probes'", name, false));
+    sets.require_some("'Output->Probes'", name, h.probe_members.back());
+    h.probe_names.push_back(name);
   }
+  h.node_ids = deck_.output.history_nodes, h.element_ids = deck_.output.history_elements;
+  h.nodes = sets.nodes_by_id("'Output->History Nodes'", h.node_ids);
+  h.elements = sets.elements_by_id("'Output->History Elements'", h.element_ids);
 }
 
 void Simulation::summarize() {
@@ -361,7 +367,7 @@ RunSummary Simulation::run() {
   const bool restarted = summary_.restart_step >= 0;
   const double e0 = restarted ? restart_e0_ : energy_of_the_state(dyn.record());
   const RunLocks locks(deck_, comm_);  // before anything is written
-  RunOutputs out(deck_, model_, results_sets_, probe_names_, probe_members_, summary_.restart_step, restart_marks_, e0,
+  RunOutputs out(deck_, model_, results_sets_, history_points_, summary_.restart_step, restart_marks_, e0,
                  comm_);
   print_notices(start_notices(out));
   if (restarted) out.resume_physics(restart_physics_);

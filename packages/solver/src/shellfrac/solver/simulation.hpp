@@ -81,7 +81,7 @@ class Simulation {
   std::vector<std::string> start_notices(const RunOutputs& out) const;
   void print_notices(const std::vector<std::string>& notices) const;
   void refuse_changed_physics_over_its_origin(const io::CheckpointData& header) const;
-  void resolve_probes();
+  void resolve_history_points();
   void summarize();
   void check_time_step();
   void record_peak_memory();
@@ -94,8 +94,7 @@ class Simulation {
   bool allow_physics_change_ = false;
   RestartFingerprint fingerprint_;
   RunModel model_;
-  std::vector<std::string> probe_names_;
-  std::vector<std::vector<char>> probe_members_;
+  HistoryPoints history_points_;  // probes, single nodes and elements of the history
   ResultsSets results_sets_;  ///< the sets of the Exodus results, resolved at set-up
   RunSummary summary_;
   double restart_e0_ = 0;  ///< initial energy of the restarted run (for the balance error)

@@ -65,6 +65,25 @@ double vm_norm(const double X[3]) {
   return std::sqrt(std::max(0.0, X[0] * X[0] - X[0] * X[1] + X[1] * X[1] + 3 * X[2] * X[2]));
 }
 
+/// Calls f(w, N, Q, M, alpha) at each area point of owned element le: the resultants of the current strains (the
+/// element kernel's kinematics with the current lifted edges) and the committed plastic state, w the point's
+/// share of the element's area and alpha its equivalent plastic strain (0 for an elastic block).
+template <class F>
+void for_each_point_resultants(const ShellModel& model, const ShellState& state, LocalId le, F&& f) {
+  constexpr int nq = disc::num_area_points;
+  const double zero[3] = {0, 0, 0};
+  const double area = model.element_refs[le].area;
+  PointStrains p[nq];
+  element_strains(model, state, le, p);
+  for (int q = 0; q < nq; ++q) {
+    const materials::PlasticState* st = model.is_plastic(le) ? &state.plastic[le * nq + q] : nullptr;
+    double N[3], Q[2], M[3];
+    materials::elastic_resultants(model.elastic(le), p[q].eps, p[q].gam, p[q].rho, st ? st->eps_p : zero,
+                                  st ? st->gam_p : zero, st ? st->rho_p : zero, N, Q, M);
+    f(p[q].weight / area, N, Q, M, st ? st->alpha : 0.0);
+  }
+}
+
 }  // namespace
 
 struct ShellDynamics::Impl {
@@ -147,6 +166,37 @@ std::vector<double> ShellDynamics::probes(const std::vector<std::vector<char>>& 
   return probe_values(impl_->state, impl_->model, members);
 }
 
+std::vector<double> ShellDynamics::node_histories(const std::vector<GlobalId>& nodes) const {
+  return node_history_values(impl_->state, impl_->model, nodes);
+}
+
+std::vector<double> ShellDynamics::block_energies(std::size_t num_blocks) const {
+  return block_energy_values(impl_->state, impl_->model, num_blocks);
+}
+
+std::vector<double> ShellDynamics::element_histories(const std::vector<GlobalId>& elements) const {
+  const Impl& s = *impl_;
+  const std::size_t width = element_history_suffixes().size();
+  std::vector<ExactSum> sum(width * elements.size());  // the owner's values; the other ranks add nothing
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    const LocalId le = s.model.dm.local_id(elements[k]);
+    if (le < 0 || le >= s.model.owned) continue;
+    double mean[10] = {};
+    for_each_point_resultants(s.model, s.state, le, [&](double w, const double* N, const double* Q, const double* M,
+                                                        double alpha) {
+      for (int c = 0; c < 3; ++c) mean[c] += w * N[c], mean[3 + c] += w * M[c];
+      for (int c = 0; c < 2; ++c) mean[6 + c] += w * Q[c];
+      mean[8] += w * alpha;
+    });
+    mean[9] = *s.state.strain_energy.at(le);
+    for (std::size_t c = 0; c < width; ++c) sum[width * k + c].add(mean[c]);
+  }
+  ExactSum::allreduce(sum, s.model.dm.comm());
+  std::vector<double> out;
+  for (const auto& x : sum) out.push_back(x.value());
+  return out;
+}
+
 std::vector<double> ShellDynamics::reactions() const {
   return reaction_values(impl_->state, impl_->model, impl_->constraints);
 }
@@ -216,24 +266,15 @@ std::vector<std::vector<double>> ShellDynamics::crack_events() { return impl_->f
 void ShellDynamics::element_fields(std::vector<std::vector<double>>& fields) const {
   const Impl& s = *impl_;
   const ShellModel& model = s.model;
-  constexpr int nq = disc::num_area_points;
   fields.assign(std::size_t(ElementField::count), std::vector<double>(model.owned, 0.0));
-  const double zero[3] = {0, 0, 0};
   for (LocalId le = 0; le < model.owned; ++le) {
-    const double area = model.element_refs[le].area;
-    PointStrains p[nq];
-    element_strains(model, s.state, le, p);
-    for (int q = 0; q < nq; ++q) {
-      const materials::PlasticState* st = model.is_plastic(le) ? &s.state.plastic[le * nq + q] : nullptr;
-      double N[3], Q[2], M[3];
-      materials::elastic_resultants(model.elastic(le), p[q].eps, p[q].gam, p[q].rho, st ? st->eps_p : zero,
-                                    st ? st->gam_p : zero, st ? st->rho_p : zero, N, Q, M);
-      const double w = p[q].weight / area;
-      fields[int(ElementField::eq_plastic_strain)][le] += w * (st ? st->alpha : 0.0);
+    for_each_point_resultants(model, s.state, le, [&](double w, const double* N, const double* Q, const double* M,
+                                                      double alpha) {
+      fields[int(ElementField::eq_plastic_strain)][le] += w * alpha;
       fields[int(ElementField::membrane_force)][le] += w * vm_norm(N);
       fields[int(ElementField::bending_moment)][le] += w * vm_norm(M);
       fields[int(ElementField::shear_force)][le] += w * std::sqrt(Q[0] * Q[0] + Q[1] * Q[1]);
-    }
+    });
     fields[int(ElementField::damage)][le] = s.fracture.damage(s.state, model, le);
     fields[int(ElementField::edge_strength)][le] = s.fracture.weakest_edge_strength(model, le);
   }

@@ -59,6 +59,16 @@ class ShellDynamics {
   /// Node-set probes: for each entry of `members` (a flag per mesh node), the mean displacement (3) and
   /// velocity (3) over every DG copy of its nodes, summed in global DG-node order. Collective.
   std::vector<double> probes(const std::vector<std::vector<char>>& members) const;
+  /// Single-node histories: for each mesh node of `nodes` (positions), the mean displacement, velocity and
+  /// acceleration over its DG copies (node_history_values). Collective.
+  std::vector<double> node_histories(const std::vector<GlobalId>& nodes) const;
+  /// Single-element histories: for each element of `elements` (global ids), in the order of
+  /// element_history_suffixes(): the area means of the resultants N11 N22 N12 M11 M22 M12 Q1 Q2 (components in the
+  /// local basis e_1, e_2 of each area point, theory.md §1.4; on a flat element one basis, e_1 along its first
+  /// edge), of the equivalent plastic strain, and the element's strain energy. Collective.
+  std::vector<double> element_histories(const std::vector<GlobalId>& elements) const;
+  /// Per element block: its kinetic energy, strain energy and plastic work (block_energy_values). Collective.
+  std::vector<double> block_energies(std::size_t num_blocks) const;
   /// Per boundary condition, in deck order: its support reaction force (3), then its support couple sum t x g
   /// over the director nodes it holds (3) (constraints.hpp: which condition a node's reaction belongs to).
   /// Collective.

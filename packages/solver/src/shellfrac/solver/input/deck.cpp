@@ -108,6 +108,20 @@ void read_output(Teuchos::ParameterList& pl, const params::Context& ctx, Deck& d
                                  << "' twice; each probe gives its own history columns, so name each set once");
     d.output.probes.push_back(p);
   }
+  const auto id_list = [&](const char* name) {
+    std::vector<long long> ids;
+    for (int id : out.get<Teuchos::Array<int>>(name)) {
+      SHELLFRAC_INPUT_REQUIRE(id > 0, file << ": 'Output->" << name << "' names " << id
+                                           << "; ids are the mesh file's, which are positive");
+      SHELLFRAC_INPUT_REQUIRE(std::find(ids.begin(), ids.end(), id) == ids.end(),
+                              file << ": 'Output->" << name << "' names " << id << " twice");
+      ids.push_back(id);
+    }
+    return ids;
+  };
+  d.output.history_nodes = id_list("History Nodes");
+  d.output.history_elements = id_list("History Elements");
+  d.output.block_energies = out.get<bool>("Block Energies");
   d.output.progress_interval = out.get<double>("Progress Interval");
   auto valid = nodal_result_names();
   for (const auto& f : element_result_names()) valid.push_back(f);
@@ -223,6 +237,17 @@ Teuchos::RCP<const Teuchos::ParameterList> OutputParams::valid_parameters() {
   pl->set("Probes", Teuchos::Array<std::string>(), "Node sets whose mean displacement and velocity (over all DG "
                                                      "copies of their nodes) are history columns <set>_displ_x ... "
                                                      "<set>_vel_z, e.g. {tip, centre}");
+  pl->set("History Nodes", Teuchos::Array<int>(),
+          "Mesh nodes, by the mesh file's ids (positions from 1 when it has none), whose displacement, velocity and "
+          "acceleration (mean over the node's DG copies) are history columns node<id>_displ_x ... node<id>_acc_z, "
+          "e.g. {17, 2051}");
+  pl->set("History Elements", Teuchos::Array<int>(),
+          "Elements, by the mesh file's ids (positions from 1 when it has none), whose resultants N11 N22 N12 M11 "
+          "M22 M12 Q1 Q2 (area means in the element's local basis), equivalent plastic strain and strain energy are "
+          "history columns element<id>_N11 ... element<id>_strain_energy, e.g. {5, 1200}");
+  pl->set("Block Energies", true,
+          "History columns per element block: <block>_kinetic_energy, <block>_strain_energy and "
+          "<block>_plastic_dissipation (they sum to the totals)");
   return pl;
 }
 

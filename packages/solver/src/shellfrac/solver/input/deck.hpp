@@ -28,6 +28,9 @@ struct OutputParams {
   std::string base_name;  ///< results are <directory>/<base_name>.exo and <base_name>_history.csv
   std::string directory;  ///< "" = the current directory
   std::vector<std::string> probes;  ///< node sets whose mean displacement/velocity go to the history
+  std::vector<long long> history_nodes;     ///< mesh nodes (the mesh file's ids) with their own history columns
+  std::vector<long long> history_elements;  ///< elements (the mesh file's ids) with their own history columns
+  bool block_energies = true;               ///< per element block: kinetic, strain energy and plastic work
   double progress_interval = 10;    ///< seconds of wall time between progress lines on rank 0 (0 = none)
   std::vector<std::string> fields;  ///< Exodus fields to write (nodal_result_names, element_result_names; empty = all)
 

@@ -1,6 +1,8 @@
 #include "shellfrac/solver/input/mesh_sets.hpp"
 
 #include <algorithm>
+#include <string>
+#include <unordered_map>
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
@@ -24,7 +26,54 @@ Vec3 vertex_centroid(const mesh::SerialMesh& m, GlobalId e) {
   return c;
 }
 
+/// The positions of `ids` among the entities numbered by `file_ids` (by position from 1 when it is empty; a file
+/// with fewer ids than entities leaves the rest, the nodes shellfrac added, numbered by position), -1 where none.
+std::vector<GlobalId> positions_of(const std::vector<long long>& ids, const mesh::FileIds& file_ids, GlobalId count) {
+  std::vector<GlobalId> out;
+  std::unordered_map<long long, GlobalId> position;
+  for (GlobalId p = 0; p < GlobalId(file_ids.ids.size()); ++p) position.emplace(file_ids.ids[std::size_t(p)], p);
+  for (long long id : ids) {
+    const auto it = position.find(id);
+    if (it != position.end()) out.push_back(it->second);
+    else if (file_ids.empty() && id >= 1 && id <= count) out.push_back(GlobalId(id - 1));
+    else out.push_back(-1);
+  }
+  return out;
+}
+
+/// " (ids 1 to n)" or " (the ids of its id map, a to b)" for the ids a mesh's nodes or elements have.
+std::string id_range(const mesh::FileIds& file_ids, GlobalId count) {
+  if (file_ids.empty()) return " (its ids run from 1 to " + std::to_string(count) + ")";
+  const auto [lo, hi] = std::minmax_element(file_ids.ids.begin(), file_ids.ids.end());
+  return " (its id map runs from " + std::to_string(*lo) + " to " + std::to_string(*hi) + ")";
+}
+
 }  // namespace
+
+std::vector<GlobalId> MeshSets::nodes_by_id(const std::string& what, const std::vector<long long>& ids) const {
+  const GlobalId count = GlobalId(mesh_.coords.size());
+  std::vector<GlobalId> out = positions_of(ids, mesh_.node_ids, count);
+  std::vector<char> used(std::size_t(count), 0);
+  for (GlobalId n : mesh_.connectivity) used[std::size_t(n)] = 1;
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    SHELLFRAC_INPUT_REQUIRE(out[k] >= 0, file_ << ": " << what << " names node " << ids[k] << ", which the mesh ("
+                                              << mesh_.source << ") does not have" << id_range(mesh_.node_ids, count));
+    SHELLFRAC_INPUT_REQUIRE(used[std::size_t(out[k])], file_ << ": " << what << " names node " << ids[k]
+                                                             << ", which no element of the mesh (" << mesh_.source
+                                                             << ") uses: it has no motion to record");
+  }
+  return out;
+}
+
+std::vector<GlobalId> MeshSets::elements_by_id(const std::string& what, const std::vector<long long>& ids) const {
+  const GlobalId count = mesh_.num_elements();
+  std::vector<GlobalId> out = positions_of(ids, mesh_.element_ids, count);
+  for (std::size_t k = 0; k < ids.size(); ++k)
+    SHELLFRAC_INPUT_REQUIRE(out[k] >= 0, file_ << ": " << what << " names element " << ids[k] << ", which the mesh ("
+                                              << mesh_.source << ") does not have"
+                                              << id_range(mesh_.element_ids, count));
+  return out;
+}
 
 MeshSets::MeshSets(const mesh::SerialMesh& mesh, std::string deck_file, std::vector<Region> regions)
     : mesh_(mesh), file_(std::move(deck_file)), regions_(std::move(regions)) {

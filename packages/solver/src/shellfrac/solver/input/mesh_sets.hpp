@@ -37,6 +37,12 @@ class MeshSets {
   /// region `name`. InputError if there is none of that name.
   std::set<std::pair<GlobalId, int>> side_set(const std::string& what, const std::string& name) const;
 
+  /// The positions of the mesh nodes (elements) whose ids in the mesh file are `ids`, in their order (a file
+  /// without ids numbers by position from 1). InputError naming `what` and the id if the mesh has no such node
+  /// (element), or no element uses the node.
+  std::vector<GlobalId> nodes_by_id(const std::string& what, const std::vector<long long>& ids) const;
+  std::vector<GlobalId> elements_by_id(const std::string& what, const std::vector<long long>& ids) const;
+
   /// InputError unless `member` (a flag per node or element, from the calls above) or `edges` selects something:
   /// `what` names the entry that acts on it, `name` the set (a region outside the mesh, an empty set in the file,
   /// or a node set disjoint from the entry's elements would make the entry act on nothing, silently).

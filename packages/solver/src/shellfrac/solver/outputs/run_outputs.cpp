@@ -203,13 +203,11 @@ TableMarks table_marks(const io::CheckpointData& header) {
   return marks;
 }
 
-RunOutputs::RunOutputs(const Deck& deck, RunModel& model, const ResultsSets& sets,
-                       const std::vector<std::string>& probe_names, const std::vector<std::vector<char>>& probe_members,
+RunOutputs::RunOutputs(const Deck& deck, RunModel& model, const ResultsSets& sets, const HistoryPoints& points,
                        long restart_step, const TableMarks& marks, double e0, MPI_Comm comm)
     : deck_(deck),
       model_(model),
-      probe_names_(probe_names),
-      probe_members_(probe_members),
+      points_(points),
       e0_(e0),
       nodal_written_(written(nodal_result_names(), deck.output.fields)),
       element_written_(written(element_result_names(), deck.output.fields)),
@@ -225,13 +223,15 @@ RunOutputs::RunOutputs(const Deck& deck, RunModel& model, const ResultsSets& set
     element_constant_[0].push_back(model.block_ids[std::size_t(dm.element_block(le))]);
     element_constant_[1].push_back(dm.rank());
   }
-  for (const auto& bc : deck.boundary_conditions) condition_names_.push_back(bc.name);
-  contact_columns_ = model.dynamics->contact_columns();
+  HistoryGroups& g = history_names_;
+  g.probe_names = points.probe_names;
+  for (const auto& bc : deck.boundary_conditions) g.condition_names.push_back(bc.name);
+  g.contact_columns = model.dynamics->contact_columns();
+  for (long long id : points.node_ids) g.node_names.push_back("node" + std::to_string(id));
+  for (long long id : points.element_ids) g.element_names.push_back("element" + std::to_string(id));
+  if (deck.output.block_energies) g.block_names = model.block_names;
   std::vector<std::string> columns;
-  for (const auto& [name, value] : history_row({}, 0, probe_names_, std::vector<double>(6 * probe_names_.size()),
-                                               condition_names_, std::vector<double>(6 * condition_names_.size()),
-                                               contact_columns_, std::vector<double>(contact_columns_.size())))
-    columns.push_back(name);
+  for (const auto& [name, value] : history_row({}, 0, g.names_only())) columns.push_back(name);
   exodus_ = std::make_unique<io::ExodusResultsWriter>(exodus_path_, results_layout(deck, model, sets, columns), comm);
   // A table: a new file, or after a restart the table the checkpoint names continued if it is this base's and
   // provably the checkpointed run's; else a new file (the table on disk is left as it is).
@@ -313,13 +313,15 @@ std::vector<std::string> RunOutputs::series_notices() const {
 std::vector<double> RunOutputs::history_values(StepRecord* record) {
   auto& dyn = *model_.dynamics;
   const StepRecord r = dyn.record();
-  const auto probes = dyn.probes(probe_members_);
-  const auto reactions = dyn.reactions();
-  const auto contact = dyn.contact_values();
+  HistoryGroups g = history_names_;
+  g.probes = dyn.probes(points_.probe_members);
+  g.reactions = dyn.reactions();
+  g.contact_values = dyn.contact_values();
+  g.nodes = dyn.node_histories(points_.nodes);
+  g.elements = dyn.element_histories(points_.elements);
+  if (!g.block_names.empty()) g.blocks = dyn.block_energies(g.block_names.size());
   std::vector<double> values;
-  for (const auto& [name, value] :
-       history_row(r, e0_, probe_names_, probes, condition_names_, reactions, contact_columns_, contact))
-    values.push_back(value);
+  for (const auto& [name, value] : history_row(r, e0_, g)) values.push_back(value);
   if (record) *record = r;
   return values;
 }

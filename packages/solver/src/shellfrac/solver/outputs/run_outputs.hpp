@@ -18,6 +18,7 @@
 #include "shellfrac/io/history.hpp"
 #include "shellfrac/solver/outputs/physics_summary.hpp"
 #include "shellfrac/solver/outputs/results_series.hpp"
+#include "shellfrac/solver/step/energy_accounts.hpp"
 
 namespace shellfrac::solver {
 
@@ -62,6 +63,15 @@ struct ResultsSets {
 };
 ResultsSets results_sets(const Deck& deck, const RunModel& model);
 
+/// What the history records beyond the global quantities (Output->Probes, History Nodes, History Elements),
+/// resolved against the mesh at set-up.
+struct HistoryPoints {
+  std::vector<std::string> probe_names;
+  std::vector<std::vector<char>> probe_members;  ///< per probe: a flag per mesh node
+  std::vector<long long> node_ids, element_ids;  ///< as the deck names them (the mesh file's ids; column names)
+  std::vector<GlobalId> nodes, elements;         ///< their mesh node positions and global element ids
+};
+
 class RunOutputs {
  public:
   /// Creates the files (removing stale results of an earlier run first) with the sets `sets` (results_sets). `e0`
@@ -71,9 +81,8 @@ class RunOutputs {
   /// otherwise the table on disk is left as it is and the run starts <base>_<table>.csv, or if that exists
   /// <base>.restart<step>_<table>.csv, and says so (`notices`) when a table it could have continued was not
   /// provably its own. Collective.
-  RunOutputs(const Deck& deck, RunModel& model, const ResultsSets& sets, const std::vector<std::string>& probe_names,
-             const std::vector<std::vector<char>>& probe_members, long restart_step, const TableMarks& marks,
-             double e0, MPI_Comm comm);
+  RunOutputs(const Deck& deck, RunModel& model, const ResultsSets& sets, const HistoryPoints& points,
+             long restart_step, const TableMarks& marks, double e0, MPI_Comm comm);
   ~RunOutputs();
 
   /// An Exodus frame of the current state, and (if `fragment_rows`, fracture runs) the fragment table. Collective.
@@ -112,8 +121,8 @@ class RunOutputs {
   std::vector<double> history_values(StepRecord* record);
   const Deck& deck_;
   RunModel& model_;
-  std::vector<std::string> probe_names_, condition_names_, contact_columns_;
-  const std::vector<std::vector<char>>& probe_members_;
+  const HistoryPoints& points_;
+  HistoryGroups history_names_;  // the names of the history's column groups (values empty)
   double e0_;
   std::string exodus_path_;
   std::unique_ptr<io::ExodusResultsWriter> exodus_;

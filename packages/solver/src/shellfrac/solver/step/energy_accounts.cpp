@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "shellfrac/core/error.hpp"
 #include "shellfrac/core/exact_sum.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/disc/director.hpp"
@@ -92,27 +93,81 @@ double energy_balance_error(const StepRecord& r, double e0) {
          r.activation_loss - e0 - r.external_work - r.reaction_work;
 }
 
-std::vector<double> probe_values(const ShellState& s, const ShellModel& model,
-                                 const std::vector<std::vector<char>>& members) {
+namespace {
+
+/// Means over the DG copies of groups of mesh nodes: `groups(n, visit)` calls visit(g) for each group g that mesh
+/// node n belongs to. Per group: displacement (3), velocity (3) and, if `acceleration`, acceleration (3).
+template <class Groups>
+std::vector<double> dg_copy_means(const ShellState& s, const ShellModel& model, std::size_t num_groups,
+                                  bool acceleration, Groups&& groups) {
   const auto& dm = model.dm;
-  std::vector<ExactSum> sum(7 * members.size());  // per probe: displacement (3), velocity (3), copies
-  for (std::size_t p = 0; p < members.size(); ++p)
-    for (LocalId le = 0; le < model.owned; ++le)
-      for (int A = 0; A < 6; ++A) {
-        if (!members[p][dm.mesh_node(le, A)]) continue;
+  const std::size_t width = acceleration ? 9 : 6;
+  std::vector<ExactSum> sum((width + 1) * num_groups);  // per group: the quantities, then the number of copies
+  for (LocalId le = 0; le < model.owned; ++le)
+    for (int A = 0; A < 6; ++A)
+      groups(dm.mesh_node(le, A), [&](std::size_t g) {
+        ExactSum* out = &sum[(width + 1) * g];
         for (int c = 0; c < 3; ++c) {
-          sum[7 * p + c].add(s.x.at(le, A)[c] - model.X.at(le, A)[c]);
-          sum[7 * p + 3 + c].add(s.v.at(le, A)[c]);
+          out[c].add(s.x.at(le, A)[c] - model.X.at(le, A)[c]);
+          out[3 + c].add(s.v.at(le, A)[c]);
+          if (acceleration) out[6 + c].add(s.a.at(le, A)[c]);
         }
-        sum[7 * p + 6].add(1.0);
-      }
+        out[width].add(1.0);
+      });
   ExactSum::allreduce(sum, dm.comm());
   std::vector<double> out;
-  for (std::size_t p = 0; p < members.size(); ++p) {
-    const double copies = sum[7 * p + 6].value();
-    for (int c = 0; c < 6; ++c) out.push_back(copies > 0 ? sum[7 * p + c].value() / copies : 0.0);
+  for (std::size_t g = 0; g < num_groups; ++g) {
+    const double copies = sum[(width + 1) * g + width].value();
+    for (std::size_t c = 0; c < width; ++c) out.push_back(copies > 0 ? sum[(width + 1) * g + c].value() / copies : 0.0);
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<double> probe_values(const ShellState& s, const ShellModel& model,
+                                 const std::vector<std::vector<char>>& members) {
+  return dg_copy_means(s, model, members.size(), false, [&](GlobalId n, const auto& visit) {
+    for (std::size_t p = 0; p < members.size(); ++p)
+      if (members[p][std::size_t(n)]) visit(p);
+  });
+}
+
+std::vector<double> node_history_values(const ShellState& s, const ShellModel& model,
+                                        const std::vector<GlobalId>& nodes) {
+  std::vector<std::pair<GlobalId, std::size_t>> sorted;  // (mesh node, its place in `nodes`)
+  for (std::size_t k = 0; k < nodes.size(); ++k) sorted.push_back({nodes[k], k});
+  std::sort(sorted.begin(), sorted.end());
+  return dg_copy_means(s, model, nodes.size(), true, [&](GlobalId n, const auto& visit) {
+    auto it = std::lower_bound(sorted.begin(), sorted.end(), std::pair<GlobalId, std::size_t>{n, 0});
+    for (; it != sorted.end() && it->first == n; ++it) visit(it->second);
+  });
+}
+
+std::vector<std::string> node_history_suffixes() {
+  return {"_displ_x", "_displ_y", "_displ_z", "_vel_x", "_vel_y", "_vel_z", "_acc_x", "_acc_y", "_acc_z"};
+}
+
+std::vector<double> block_energy_values(const ShellState& s, const ShellModel& model, std::size_t num_blocks) {
+  std::vector<ExactSum> sum(3 * num_blocks);  // per block: kinetic, strain, plastic work
+  for (LocalId le = 0; le < model.owned; ++le) {
+    ExactSum* out = &sum[3 * std::size_t(model.dm.element_block(le))];
+    out[0].add(model.element_kinetic(s, le));
+    out[1].add(*s.strain_energy.at(le));
+    out[2].add(*s.plastic_work.at(le));
+  }
+  ExactSum::allreduce(sum, model.dm.comm());
+  std::vector<double> out;
+  for (const auto& x : sum) out.push_back(x.value());
+  return out;
+}
+
+std::vector<std::string> block_energy_suffixes() {
+  return {"_kinetic_energy", "_strain_energy", "_plastic_dissipation"};
+}
+
+std::vector<std::string> element_history_suffixes() {
+  return {"_N11", "_N22", "_N12", "_M11", "_M22", "_M12", "_Q1", "_Q2", "_eq_plastic_strain", "_strain_energy"};
 }
 
 std::vector<double> reaction_values(const ShellState& s, const ShellModel& model, const Constraints& constraints) {
@@ -131,17 +186,38 @@ std::vector<double> reaction_values(const ShellState& s, const ShellModel& model
   return out;
 }
 
-HistoryRow history_row(const StepRecord& r, double e0, const std::vector<std::string>& probe_names,
-                       const std::vector<double>& probes, const std::vector<std::string>& condition_names,
-                       const std::vector<double>& reactions, const std::vector<std::string>& contact_columns,
-                       const std::vector<double>& contact_values) {
+HistoryGroups HistoryGroups::names_only() const {
+  HistoryGroups g = *this;
+  const auto zeros = [](std::vector<double>& v, std::size_t n) { v.assign(n, 0.0); };
+  zeros(g.probes, 6 * probe_names.size()), zeros(g.reactions, 6 * condition_names.size());
+  zeros(g.contact_values, contact_columns.size());
+  zeros(g.nodes, node_history_suffixes().size() * node_names.size());
+  zeros(g.elements, element_history_suffixes().size() * element_names.size());
+  zeros(g.blocks, block_energy_suffixes().size() * block_names.size());
+  return g;
+}
+
+namespace {
+
+/// Appends name + suffix for every name and suffix (names outer) with the next value of `values`.
+void append_group(HistoryRow& row, const std::vector<std::string>& names, const std::vector<std::string>& suffixes,
+                  const std::vector<double>& values) {
+  SHELLFRAC_REQUIRE(values.size() == names.size() * suffixes.size(),
+                    "history group of " << names.size() << " x " << suffixes.size() << " has " << values.size()
+                                        << " values");
+  std::size_t k = 0;
+  for (const auto& name : names)
+    for (const auto& suffix : suffixes) row.push_back({name + suffix, values[k++]});
+}
+
+}  // namespace
+
+HistoryRow history_row(const StepRecord& r, double e0, const HistoryGroups& g) {
   HistoryRow row = {{"step", double(r.step)},           {"time", r.time},
                     {"dt", r.dt},                       {"kinetic_energy", r.kinetic},
                     {"strain_energy", r.strain},        {"penalty_energy", r.penalty},
                     {"external_work", r.external_work}, {"energy_balance_error", energy_balance_error(r, e0)}};
-  std::size_t k = 0;
-  for (const auto& p : probe_names)
-    for (const char* q : {"_displ_x", "_displ_y", "_displ_z", "_vel_x", "_vel_y", "_vel_z"}) row.push_back({p + q, probes[k++]});
+  append_group(row, g.probe_names, {"_displ_x", "_displ_y", "_displ_z", "_vel_x", "_vel_y", "_vel_z"}, g.probes);
   row.insert(row.end(), {{"reaction_work", r.reaction_work},
                          {"damping_dissipation", r.damping},
                          {"plastic_dissipation", r.plastic_work},
@@ -151,12 +227,13 @@ HistoryRow history_row(const StepRecord& r, double e0, const std::vector<std::st
                          {"num_cohesive_edges", double(r.cohesive_edges)},
                          {"num_separated_edges", double(r.separated_edges)},
                          {"num_fragments", double(r.fragments)}});
-  k = 0;
-  for (const auto& bc : condition_names)
-    for (const char* q : {"_reaction_x", "_reaction_y", "_reaction_z", "_moment_x", "_moment_y", "_moment_z"})
-      row.push_back({bc + q, reactions[k++]});
+  append_group(row, g.condition_names,
+               {"_reaction_x", "_reaction_y", "_reaction_z", "_moment_x", "_moment_y", "_moment_z"}, g.reactions);
   for (int c = 0; c < 3; ++c) row.push_back({std::string("angular_momentum_") + char('x' + c), r.angular_momentum[c]});
-  for (std::size_t k = 0; k < contact_columns.size(); ++k) row.push_back({contact_columns[k], contact_values[k]});
+  append_group(row, g.contact_columns, {""}, g.contact_values);
+  append_group(row, g.node_names, node_history_suffixes(), g.nodes);
+  append_group(row, g.element_names, element_history_suffixes(), g.elements);
+  append_group(row, g.block_names, block_energy_suffixes(), g.blocks);
   return row;
 }
 

@@ -49,17 +49,41 @@ double energy_balance_error(const StepRecord& r, double e0);
 std::vector<double> probe_values(const ShellState& s, const ShellModel& model,
                                  const std::vector<std::vector<char>>& members);
 
+/// Single-node histories: for each mesh node of `nodes` (positions), the mean displacement (3), velocity (3) and
+/// acceleration (3) over its DG copies, in the order of node_history_suffixes(). Collective.
+std::vector<double> node_history_values(const ShellState& s, const ShellModel& model,
+                                        const std::vector<GlobalId>& nodes);
+std::vector<std::string> node_history_suffixes();
+
+/// Per element block (block index order): the kinetic energy, the strain energy and the plastic work of its
+/// elements, in the order of block_energy_suffixes(); over the blocks they sum to the totals. Collective.
+std::vector<double> block_energy_values(const ShellState& s, const ShellModel& model, std::size_t num_blocks);
+std::vector<std::string> block_energy_suffixes();
+
+/// The quantities of a single element's history (ShellDynamics::element_histories): its resultants N11 N22 N12
+/// M11 M22 M12 Q1 Q2, its equivalent plastic strain and its strain energy.
+std::vector<std::string> element_history_suffixes();
+
 /// Per boundary condition in deck order: its reaction force (3) and its support couple (3). Collective.
 std::vector<double> reaction_values(const ShellState& s, const ShellModel& model, const Constraints& constraints);
 
+/// The columns of a history row beyond the fixed ones, by group: the names (a set, condition, node, element or
+/// block name, to which each group's suffixes are appended; the contact columns are whole names) and the values
+/// (per name, one per suffix).
+struct HistoryGroups {
+  std::vector<std::string> probe_names, condition_names, contact_columns, node_names, element_names, block_names;
+  std::vector<double> probes, reactions, contact_values, nodes, elements, blocks;
+  /// The same names with every value 0 (for the header).
+  HistoryGroups names_only() const;
+};
+
 /// One history row as (column name, value) pairs in column order: step, time, dt, energies and the balance
 /// error, the probes (<set>_displ_x ... <set>_vel_z), the other work accounts, the fracture counts, the
-/// reactions (<condition>_reaction_x ... _moment_z), the angular momentum and the contact partners' columns
-/// (ShellDynamics::contact_columns: the walls' normal forces <wall>_wall_force, the rigid bodies' motion).
+/// reactions (<condition>_reaction_x ... _moment_z), the angular momentum, the contact partners' columns
+/// (ShellDynamics::contact_columns: the walls' normal forces <wall>_wall_force, the rigid bodies' motion), then the
+/// single nodes (node<id>_displ_x ... _acc_z), the single elements (element<id>_N11 ... _strain_energy, see
+/// ShellDynamics::element_histories) and the blocks (<block>_kinetic_energy, ...).
 using HistoryRow = std::vector<std::pair<std::string, double>>;
-HistoryRow history_row(const StepRecord& r, double e0, const std::vector<std::string>& probe_names,
-                       const std::vector<double>& probes, const std::vector<std::string>& condition_names,
-                       const std::vector<double>& reactions, const std::vector<std::string>& contact_columns,
-                       const std::vector<double>& contact_values);
+HistoryRow history_row(const StepRecord& r, double e0, const HistoryGroups& groups);
 
 }  // namespace shellfrac::solver
