@@ -6,7 +6,8 @@
 // not timed, then N steps (default 100) are timed. Every "us_per_element_step" value is
 //   max over ranks (seconds on the rank) * 1e6 / (global elements * N),
 // so ideal parallel speed-up lowers it. The last line is total_us_per_element_step=<value>, the wall time
-// of the N steps; threads=<T> is the Kokkos execution space's concurrency on each rank. Exit codes as
+// of the N steps; threads=<T> is the Kokkos execution space's concurrency on each rank; heap_allocations_per_step
+// counts the C++ heap allocations of the timed steps (allocation_counter.hpp; max over ranks). Exit codes as
 // shellfrac: 0 success, 1 input error, 2 usage error, 3 internal error.
 #include <mpi.h>
 
@@ -20,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "allocation_counter.hpp"
 #include "shellfrac/core/application.hpp"
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
@@ -89,9 +91,11 @@ int run(int argc, char** argv) {
   for (long s = 0; s < warmup; ++s) dyn.step();
   const solver::PhaseTimes before = dyn.phase_times();
   MPI_Barrier(comm);
+  const long long allocations_before = heap_allocations();
   const auto start = std::chrono::steady_clock::now();
   for (long s = 0; s < steps; ++s) dyn.step();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double allocations = double(heap_allocations() - allocations_before);
   const solver::PhaseTimes& after = dyn.phase_times();
 
   const double element_steps = double(dmesh.num_global_elements()) * double(steps);
@@ -107,6 +111,7 @@ int run(int argc, char** argv) {
   const double contact = per_element_step(after.contact - before.contact);
   const double total = per_element_step(wall);
   const double bytes = parallel::max(dyn.bytes_per_element(), comm);
+  const double allocations_per_step = parallel::max(allocations, comm) / double(steps);
   const int threads = Kokkos::DefaultExecutionSpace().concurrency();
   const auto peaks = parallel::peak_resident_bytes(comm);
   double peak_sum = 0;
@@ -124,6 +129,7 @@ int run(int argc, char** argv) {
               << "nucleation_check_us_per_element_step=" << nucleation << " (part of update)\n"
               << "shell_contact_us_per_element_step=" << contact << " (part of update)\n"
               << "bytes_per_element=" << bytes << "\n"
+              << "heap_allocations_per_step=" << allocations_per_step << " (operator new, max over ranks)\n"
               << "peak_resident_bytes_max=" << *std::max_element(peaks.begin(), peaks.end()) << "\n"
               << "peak_resident_bytes_per_element=" << peak_sum / double(dmesh.num_global_elements()) << "\n"
               << "total_us_per_element_step=" << total << std::endl;

@@ -274,7 +274,8 @@ void ShellContact::build_candidate_lists(std::vector<Box> face_boxes) {
   for (std::size_t j = 0; j < faces_.size(); ++j) write_face_bounds(&face_X_[j * face_values], &reference_bounds[j * bound_values]);
   const FaceBoundsView X_bounds(reference_bounds.data(), faces_.size());
   const double node_reach = margin_ + tie_;  // the tie band too: every face within it of a contact is a candidate
-  Kokkos::parallel_for("shellfrac::ContactCandidates", KernelRange(0, nodes), [=](const std::size_t k) {
+  static const std::string label_contact_candidates("shellfrac::ContactCandidates");
+  Kokkos::parallel_for(label_contact_candidates, KernelRange(0, nodes), [=](const std::size_t k) {
     const Face& own = faces[k / position_nodes];
     const Box q = Box::around(x.point(LocalId(k)), 1).inflated(own.half_thickness + node_reach);
     std::vector<int>& list = list_of[k];
@@ -312,7 +313,8 @@ void ShellContact::measure_gaps_at_search() {
   const int* candidates = candidates_.data();
   const Face* faces = faces_.data();
   const FaceNodesView x = face_nodes(face_x_);
-  Kokkos::parallel_for("shellfrac::ContactGapsAtSearch", KernelRange(0, nodes_of_.size() * position_nodes),
+  static const std::string label_contact_gaps_at_search("shellfrac::ContactGapsAtSearch");
+  Kokkos::parallel_for(label_contact_gaps_at_search, KernelRange(0, nodes_of_.size() * position_nodes),
                        [=](const std::size_t k) {
                          const Face& own = faces[k / position_nodes];
                          for (int n = offset[k]; n < offset[k + 1]; ++n) {
@@ -470,12 +472,14 @@ void ShellContact::find_contacts(const double step) {
   face_bounds_.resize(faces_.size() * (bound_values + 1));
   const FaceBoundsAndMoveView bounds(face_bounds_.data(), faces_.size());
   const FaceNodesView x = face_nodes(face_x_), at_search = face_nodes(x_search_);
-  Kokkos::parallel_for("shellfrac::ContactFaceBounds", KernelRange(0, faces_.size()), [=](const std::size_t j) {
+  static const std::string label_contact_face_bounds("shellfrac::ContactFaceBounds");
+  Kokkos::parallel_for(label_contact_face_bounds, KernelRange(0, faces_.size()), [=](const std::size_t j) {
     double* b = bounds.at(LocalId(j));
     write_face_bounds(x.at(LocalId(j)), b);
     b[bound_values] = largest_move(x.at(LocalId(j)), at_search.at(LocalId(j)));
   });
-  Kokkos::parallel_for("shellfrac::ShellContact", KernelRange(0, contact_.size()), NodeSearch(*this, step));
+  static const std::string label_shell_contact("shellfrac::ShellContact");
+  Kokkos::parallel_for(label_shell_contact, KernelRange(0, contact_.size()), NodeSearch(*this, step));
 }
 
 // The forces: each node's own first, then the reactions on each face node in the order of (face gid, node gid, face

@@ -12,6 +12,8 @@
 namespace shellfrac::solver {
 
 /// The kernels' execution space: the host's (threads with a Kokkos OpenMP build), where the arrays live.
+/// (A kernel is launched with a label made once, `static const std::string`: Kokkos 3.4 takes the label as a
+/// std::string, so a string literal would be a heap allocation at every launch.)
 using KernelSpace = Kokkos::DefaultHostExecutionSpace;
 using KernelRange = Kokkos::RangePolicy<KernelSpace>;
 

@@ -195,7 +195,8 @@ void CentralDifference::start(ShellState& s) {
   external_forces(s.time, s);
   const Accelerate accelerate = accelerations(model_, constraints_, loads_.has_director_loads(), alpha_, s, s.time,
                                               0.0, s.director_rate, programs_a_);
-  Kokkos::parallel_for("shellfrac::StartAccelerations", KernelRange(0, model_.owned), accelerate);
+  static const std::string label_start_accelerations("shellfrac::StartAccelerations");
+  Kokkos::parallel_for(label_start_accelerations, KernelRange(0, model_.owned), accelerate);
 }
 
 void CentralDifference::step(ShellState& s, double dt, double t1) {
@@ -336,7 +337,8 @@ void CentralDifference::predict(ShellState& s, double dt, double t1) {
   const ConstraintViews con(constraints_, programs_u_);
   const PositionView x = kernel_view(s.x), v = kernel_view(s.v);
   const ConstPositionView a = kernel_view(std::as_const(s.a)), X = kernel_view(model_.X);
-  Kokkos::parallel_for("shellfrac::PredictPositions", KernelRange(0, model_.owned * position_nodes), [=](const LocalId i) {
+  static const std::string label_predict_positions("shellfrac::PredictPositions");
+  Kokkos::parallel_for(label_predict_positions, KernelRange(0, model_.owned * position_nodes), [=](const LocalId i) {
     double* xi = x.point(i);
     double* vi = v.point(i);
     const double* ai = a.point(i);
@@ -368,7 +370,8 @@ void CentralDifference::predict(ShellState& s, double dt, double t1) {
   const ConstViewOf<RateRows> Td = kernel_view(std::as_const(s.director_rate));
   const ConstViewOf<RateRows> Tdd = kernel_view(std::as_const(s.director_acceleration));
   const ViewOf<RateRows> Tp = kernel_view(director_rate_predicted_);
-  Kokkos::parallel_for("shellfrac::PredictDirectors", KernelRange(0, model_.owned * director_nodes), [=](const LocalId j) {
+  static const std::string label_predict_directors("shellfrac::PredictDirectors");
+  Kokkos::parallel_for(label_predict_directors, KernelRange(0, model_.owned * director_nodes), [=](const LocalId j) {
     double L[3][3], dT[2];
     load_matrix(rotation.point(j), L);
     const bool held = con.director_held(j);
@@ -430,7 +433,8 @@ void CentralDifference::correct(ShellState& s, double dt, double t1) {
   const ConstDirectorView ge0 = kernel_view(std::as_const(gext_start_));
   const ViewOf<Scalars> external_work = kernel_view(s.external_work), reaction_work = kernel_view(s.reaction_work);
   const bool director_loads = loads_.has_director_loads();
-  Kokkos::parallel_for("shellfrac::Correct", KernelRange(0, model_.owned), [=](const LocalId le) {
+  static const std::string label_correct("shellfrac::Correct");
+  Kokkos::parallel_for(label_correct, KernelRange(0, model_.owned), [=](const LocalId le) {
     double R0[position_values];  // the reactions at t_n, before accelerate overwrites them
     for (int k = 0; k < position_values; ++k) R0[k] = R.at(le)[k];
     accelerate(le);

@@ -86,7 +86,8 @@ void ForceAssembly::element_kernel(ShellState& s) {
   const auto plastic_work = kernel_view(plastic_work_increment_);
   const auto return_failed = kernel_view(return_failed_);
   const NeighborViews nb(model_.dm);
-  Kokkos::parallel_for("shellfrac::ShellElementForces", KernelRange(0, model_.owned), [=](const LocalId le) {
+  static const std::string label_shell_element_forces("shellfrac::ShellElementForces");
+  Kokkos::parallel_for(label_shell_element_forces, KernelRange(0, model_.owned), [=](const LocalId le) {
     disc::DgElementNodes in;
     element_inputs(nb, x, t, lifted(le), le, in);
     disc::DgElementForces out;
@@ -141,7 +142,8 @@ void ForceAssembly::interface_kernel(ShellState& s, const std::vector<materials:
   const auto conormal = kernel_view(s.conormal);
   const auto offset = kernel_view(std::as_const(s.activation_offset));
   const auto cohesive_energy = kernel_view(s.cohesive_energy), cohesive_dissipation = kernel_view(s.cohesive_dissipation);
-  Kokkos::parallel_for("shellfrac::InterfaceForces", KernelRange(0, LocalId(interfaces.extent(0))), [=](const LocalId i) {
+  static const std::string label_interface_forces("shellfrac::InterfaceForces");
+  Kokkos::parallel_for(label_interface_forces, KernelRange(0, LocalId(interfaces.extent(0))), [=](const LocalId i) {
     const auto& fc = interfaces(i);
     disc::EdgeNodes minus, plus;
     edge_nodes_of(x, t, fc.minus, fc.minus_edge, minus);
@@ -174,7 +176,8 @@ void ForceAssembly::gather(ShellState& s) {
   const auto incident = kernel_view(model_.incident.entries);
   const auto interfaces = kernel_view(model_.dm.interfaces());
   const NeighborViews nb(model_.dm);
-  Kokkos::parallel_for("shellfrac::GatherForces", KernelRange(0, model_.owned), [=](const LocalId le) {
+  static const std::string label_gather_forces("shellfrac::GatherForces");
+  Kokkos::parallel_for(label_gather_forces, KernelRange(0, model_.owned), [=](const LocalId le) {
     for (int k = 0; k < 3; ++k)
       if (lifted(le)[k]) add_edge_forces(fluxes(nb.element_across(le, k)).across[nb.edge_across(le, k)], le, k, f, g);
     for (int e = offset(le); e < offset(le + 1); ++e) {
