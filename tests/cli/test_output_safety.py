@@ -242,12 +242,13 @@ class OutputSafety(DeckTest):
             self.assertEqual(len(lines), 1, err)
             self.assertNotIn("MPI_ABORT", err)
             # The file size limit may strike in any part of the frame: the message then names it ("step 28, global
-            # variables: writing failed (ex_put_var: ...)").
-            m = re.match(r"^shellfrac: error: (rank [01]: )?base\.exo(\.2\.[01])?: step ([0-9]+)(, [a-z ]+)?: "
+            # variables: writing failed (ex_put_var: ...)", "step 72, element variable 5, block 1: ...").
+            m = re.match(r"^shellfrac: error: (rank [01]: )?base\.exo(\.2\.[01])?: step ([0-9]+)"
+                         r"(, [a-z ]+( [0-9]+)?(, block [0-9]+)?)?: "
                          r"writing failed \(.*; disk full, quota or file removed\?\); the results files now end at "
                          r"step ([0-9]+)$", lines[0])
             self.assertTrue(m, lines[0])
-            self.assertEqual(int(m.group(5)), int(m.group(3)) - 1)
+            self.assertEqual(int(m.group(7)), int(m.group(3)) - 1)
             self.assertFalse(os.path.exists(self.path("base.lock")))
             # Every file of the set ends on the same, whole frame: the frame the limit struck in is cut off on
             # every rank (before, the other rank kept it whole and the failing rank kept it partial, or not at all).
@@ -255,7 +256,7 @@ class OutputSafety(DeckTest):
             files = [ExodusFile(self.path(n)) for n in names]
             try:
                 for f in files:
-                    self.assertEqual(len(f.times()), int(m.group(5)), f.path)
+                    self.assertEqual(len(f.times()), int(m.group(7)), f.path)
                     # the history columns of each frame are the frame's: its own time and step
                     np_time = f.global_variable("time")
                     self.assertEqual(list(np_time), list(f.times()), f.path)
