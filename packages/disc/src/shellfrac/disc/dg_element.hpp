@@ -293,18 +293,27 @@ KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const AreaPoint
       }
     }
   }
-  // 2. Area points: DG derivatives (theory.md §5.2).
+  // 2. The director's DG derivative: the P1 director and its lifting give the same one at every area point.
+  double ddc[3][2];  // [component][alpha]
+  for (int c = 0; c < 3; ++c)
+    for (int al = 0; al < 2; ++al) {
+      double dd = 0;
+      for (int a = 0; a < 3; ++a) dd += t[a][c] * S.dL[a][al];
+      for (int k = 0; k < 3; ++k)
+        if (lift[k]) dd -= Rt[k][al][c];
+      ddc[c][al] = dd;
+    }
+  // 3. Area points: DG derivatives (theory.md §5.2).
   for (int q = 0; q < num_area_points; ++q) {
     for (int c = 0; c < 3; ++c) {
-      double aa[2], dd[2];
+      double aa[2];
+      const double* dd = ddc[c];
       for (int al = 0; al < 2; ++al) {
-        aa[al] = 0, dd[al] = 0;
+        aa[al] = 0;
         for (int A = 0; A < 6; ++A) aa[al] += x[A][c] * S.dN[q][A][al];
-        for (int a = 0; a < 3; ++a) dd[al] += t[a][c] * S.dL[a][al];
         for (int k = 0; k < 3; ++k) {
           if (!lift[k]) continue;
           for (int b = 0; b < 3; ++b) aa[al] -= Rx[k][al][c][b] * S.L[q][b];
-          dd[al] -= Rt[k][al][c];
         }
       }
       for (int i = 0; i < 2; ++i) {
