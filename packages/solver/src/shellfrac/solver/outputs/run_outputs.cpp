@@ -223,7 +223,7 @@ RunOutputs::RunOutputs(const Deck& deck, RunModel& model, const ResultsSets& set
     element_constant_[0].push_back(model.block_ids[std::size_t(dm.element_block(le))]);
     element_constant_[1].push_back(dm.rank());
   }
-  HistoryGroups& g = history_names_;
+  HistoryGroups& g = history_groups_;
   g.probe_names = points.probe_names;
   for (const auto& bc : deck.boundary_conditions) g.condition_names.push_back(bc.name);
   g.contact_columns = model.dynamics->contact_columns();
@@ -313,7 +313,7 @@ std::vector<std::string> RunOutputs::series_notices() const {
 std::vector<double> RunOutputs::history_values(StepRecord* record) {
   auto& dyn = *model_.dynamics;
   const StepRecord r = dyn.record();
-  HistoryGroups g = history_names_;
+  HistoryGroups& g = history_groups_;  // names set once; the values refreshed here
   g.probes = dyn.probes(points_.probe_members);
   g.reactions = dyn.reactions();
   g.contact_values = dyn.contact_values();

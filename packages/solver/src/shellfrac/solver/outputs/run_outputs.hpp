@@ -122,7 +122,7 @@ class RunOutputs {
   const Deck& deck_;
   RunModel& model_;
   const HistoryPoints& points_;
-  HistoryGroups history_names_;  // the names of the history's column groups (values empty)
+  HistoryGroups history_groups_;  // the history's column groups: names fixed at construction, values of the last row
   double e0_;
   std::string exodus_path_;
   std::unique_ptr<io::ExodusResultsWriter> exodus_;
