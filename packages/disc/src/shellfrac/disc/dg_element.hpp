@@ -15,6 +15,11 @@
 /// (f_ext - f)/m. Spatial director moments g (3-vectors) are projected with Lambda-bar^T by the caller.
 /// Pure functions on plain arrays, usable in Kokkos kernels; they write only their own outputs, so the
 /// caller assembles by gather in a fixed order (no atomics).
+/// Number type: the element's functions and data are templates on T, double for one element or Batch for
+/// batch_width elements in lock-step (lanes.hpp; the `...Of<T>` structs, with the double ones named without the
+/// suffix). An operation on a Batch is, on each lane, the same IEEE operation as on a double, and where one
+/// element skips work that another in its batch does (an edge that is not lifted) the batch computes both and
+/// selects per lane: each element's result is bitwise the same in a batch as on its own.
 ///
 /// Edge-local node order of local edge k: (first vertex, second vertex, mid-side) in the element's own
 /// counter-clockwise traversal, i.e. nodes edge_vertex[k][0], edge_vertex[k][1], 3 + k; the edge
@@ -24,6 +29,7 @@
 #include "shellfrac/core/triangle_basis.hpp"
 #include "shellfrac/core/types.hpp"
 #include "shellfrac/disc/element_geometry.hpp"
+#include "shellfrac/disc/lanes.hpp"
 #include "shellfrac/disc/quadrature.hpp"
 #include "shellfrac/disc/shell_strains.hpp"
 #include "shellfrac/disc/small_tensor.hpp"
@@ -40,7 +46,8 @@ KOKKOS_INLINE_FUNCTION int edge_node(int k, int j) {
 }
 
 /// Quadratic shape values along an edge at parameter s, edge-local order (vertex, vertex, mid-side).
-KOKKOS_INLINE_FUNCTION void edge_shape_p2(double s, double n[3]) {
+template <class T>
+KOKKOS_INLINE_FUNCTION void edge_shape_p2(T s, T n[3]) {
   n[0] = (1 - s) * (1 - 2 * s);
   n[1] = s * (2 * s - 1);
   n[2] = 4 * s * (1 - s);
@@ -55,12 +62,18 @@ KOKKOS_INLINE_FUNCTION void edge_shape_p2_derivative(double s, double dn[3]) {
 
 /// Shape values at an edge point seen from two sides: quadratic (positions) and linear (directors), in each
 /// side's edge-local order; `s` and `s_other` are the point's edge parameters in the two elements.
-struct EdgePointShapes {
-  double p2[3], p2_other[3], p1[2], p1_other[2];
+template <class T>
+struct EdgePointShapesOf {
+  double p2[3];
+  T p2_other[3];
+  double p1[2];
+  T p1_other[2];
 };
+using EdgePointShapes = EdgePointShapesOf<double>;
 
-KOKKOS_INLINE_FUNCTION EdgePointShapes edge_point_shapes(double s, double s_other) {
-  EdgePointShapes e;
+template <class T>
+KOKKOS_INLINE_FUNCTION EdgePointShapesOf<T> edge_point_shapes(double s, T s_other) {
+  EdgePointShapesOf<T> e;
   edge_shape_p2(s, e.p2);
   edge_shape_p2(s_other, e.p2_other);
   e.p1[0] = 1 - s, e.p1[1] = s;
@@ -70,43 +83,52 @@ KOKKOS_INLINE_FUNCTION EdgePointShapes edge_point_shapes(double s, double s_othe
 
 /// The nodes of one edge of an element in edge-local order (edge_node): the positions of its 3 position nodes
 /// (vertex, vertex, mid-side) and the directors of its 2 director nodes (the vertices).
-struct EdgeNodes {
-  double x[3][3];
-  double t[2][3];
+template <class T>
+struct EdgeNodesOf {
+  T x[3][3];
+  T t[2][3];
 };
+using EdgeNodes = EdgeNodesOf<double>;
 
 /// Forces on the nodes of one edge, in the same order: on the 3 position nodes and the 2 director nodes.
-struct EdgeForces {
-  double f[3][3];
-  double g[2][3];
+template <class T>
+struct EdgeForcesOf {
+  T f[3][3];
+  T g[2][3];
 };
+using EdgeForces = EdgeForcesOf<double>;
 
 /// Reference data of one local edge of an element.
-struct DgEdgeRef {
-  double omega[num_edge_points];      ///< omega_g = w_g |dX/ds|: reference arc-length weights (theory.md §1.4)
-  double nu_cov[num_edge_points][2];  ///< nu_{E,alpha}(g) = nu_E . G_alpha, nu_E the outward reference co-normal
-  bool nbr_same_direction;            ///< the neighbour traverses the edge in the same direction (not for a
-                                      ///< consistently oriented neighbour)
+template <class T>
+struct DgEdgeRefOf {
+  T omega[num_edge_points];      ///< omega_g = w_g |dX/ds|: reference arc-length weights (theory.md §1.4)
+  T nu_cov[num_edge_points][2];  ///< nu_{E,alpha}(g) = nu_E . G_alpha, nu_E the outward reference co-normal
+  MaskOf<T> nbr_same_direction;  ///< the neighbour traverses the edge in the same direction (not for a
+                                 ///< consistently oriented neighbour)
 };
+using DgEdgeRef = DgEdgeRefOf<double>;
 
 /// Edge parameter, in the neighbour across edge E, of the point at edge point g of this element.
-KOKKOS_INLINE_FUNCTION double neighbour_edge_parameter(const DgEdgeRef& E, int g) {
-  return E.nbr_same_direction ? edge3_rule.s[g] : 1 - edge3_rule.s[g];
+template <class T>
+KOKKOS_INLINE_FUNCTION T neighbour_edge_parameter(const DgEdgeRefOf<T>& E, int g) {
+  return select(E.nbr_same_direction, T(edge3_rule.s[g]), T(1 - edge3_rule.s[g]));
 }
 
 /// Reference data of one element (theory.md §5.3): only what differs between elements. The shape data of the
 /// reference triangle (AreaPointShapes) and the lifting weights (LiftingWeights) follow from it.
-struct DgElementRef {
-  double wj0[num_area_points];         ///< w_q j0_q
-  double Jinv[num_area_points][2][2];  ///< (J^-1)_{alpha i}
-  ShellReference ref[num_area_points]; ///< reference strain offsets gam0, rho0
-  DgEdgeRef edge[3];
-  double area;                         ///< |E| = sum_q w_q j0_q
-  double Minv[3][3];                   ///< inverse of the P1 lifting mass matrix M_psi = sum_q w_q j0_q psi psi^T
+template <class T>
+struct DgElementRefOf {
+  T wj0[num_area_points];                   ///< w_q j0_q
+  T Jinv[num_area_points][2][2];            ///< (J^-1)_{alpha i}
+  ShellReferenceOf<T> ref[num_area_points]; ///< reference strain offsets gam0, rho0
+  DgEdgeRefOf<T> edge[3];
+  T area;                                   ///< |E| = sum_q w_q j0_q
+  T Minv[3][3];                             ///< inverse of the P1 lifting mass matrix M_psi = sum_q w_q j0_q psi psi^T
   /// Membrane strains and forces are used through their P1 L2 projection on the element (theory.md §5.4;
-  /// false: at the area points as they are).
+  /// false: at the area points as they are). The same for every element of a batch.
   bool project_membrane;
 };
+using DgElementRef = DgElementRefOf<double>;
 
 /// Shape data of the reference triangle at the area points of tri6_rule: the same for every element.
 struct AreaPointShapes {
@@ -127,15 +149,18 @@ KOKKOS_INLINE_FUNCTION void area_point_shapes(AreaPointShapes& S) {
 
 /// Lifting weights of an element's edges (theory.md §5.2): W^u_{g,alpha} = 1/2 omega_g nu_alpha M_psi^-1 psi(xi_g)
 /// (positions, P1 lifting) and W^t_{g,alpha} = 1/2 omega_g nu_alpha / |E| (directors, P0 lifting).
-struct LiftingWeights {
-  double Wu[3][num_edge_points][2][3];
-  double Wt[3][num_edge_points][2];
+template <class T>
+struct LiftingWeightsOf {
+  T Wu[3][num_edge_points][2][3];
+  T Wt[3][num_edge_points][2];
 };
+using LiftingWeights = LiftingWeightsOf<double>;
 
-KOKKOS_INLINE_FUNCTION void lifting_weights(const DgElementRef& R, LiftingWeights& W) {
+template <class T>
+KOKKOS_INLINE_FUNCTION void lifting_weights(const DgElementRefOf<T>& R, LiftingWeightsOf<T>& W) {
   for (int k = 0; k < 3; ++k) {
     const int vi = edge_node(k, 0), vj = edge_node(k, 1);
-    const DgEdgeRef& E = R.edge[k];
+    const DgEdgeRefOf<T>& E = R.edge[k];
     for (int g = 0; g < num_edge_points; ++g) {
       const double s = edge3_rule.s[g];
       const double xi1 = (1 - s) * p2_node_xi[vi][0] + s * p2_node_xi[vj][0];
@@ -143,7 +168,7 @@ KOKKOS_INLINE_FUNCTION void lifting_weights(const DgElementRef& R, LiftingWeight
       double L[3], dL[3][2];
       p1_shape(xi1, xi2, L, dL);
       for (int al = 0; al < 2; ++al) {
-        const double c = 0.5 * E.omega[g] * E.nu_cov[g][al];
+        const T c = 0.5 * E.omega[g] * E.nu_cov[g][al];
         for (int b = 0; b < 3; ++b)
           W.Wu[k][g][al][b] = c * (R.Minv[b][0] * L[0] + R.Minv[b][1] * L[1] + R.Minv[b][2] * L[2]);
         W.Wt[k][g][al] = 0.5 * E.omega[g] * E.nu_cov[g][al] / R.area;
@@ -154,11 +179,12 @@ KOKKOS_INLINE_FUNCTION void lifting_weights(const DgElementRef& R, LiftingWeight
 
 /// The P1 L2 projection on the element as a matrix on area-point values: (Pi f)(xi_q) = sum_p P[q][p] f(xi_p),
 /// P[q][p] = psi(xi_q)^T M_psi^-1 psi(xi_p) w_p j0_p (theory.md §5.4).
-KOKKOS_INLINE_FUNCTION void projection_matrix(const DgElementRef& R, const AreaPointShapes& S,
-                                              double P[num_area_points][num_area_points]) {
+template <class T>
+KOKKOS_INLINE_FUNCTION void projection_matrix(const DgElementRefOf<T>& R, const AreaPointShapes& S,
+                                              T P[num_area_points][num_area_points]) {
   for (int q = 0; q < num_area_points; ++q)
     for (int p = 0; p < num_area_points; ++p) {
-      double v = 0;
+      T v = 0;
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) v += S.L[q][a] * R.Minv[a][b] * S.L[p][b];
       P[q][p] = v * R.wj0[p];
@@ -248,20 +274,24 @@ KOKKOS_INLINE_FUNCTION void build_dg_element_ref(const double X[6][3], const dou
 
 /// What the element forces read of one element (theory.md §5.4): its nodes and, across each lifted edge, the
 /// neighbour's edge nodes in the neighbour's edge-local order.
-struct DgElementNodes {
-  double x[6][3];           ///< current positions of the P2 nodes
-  double t[3][3];           ///< current directors of the P1 (vertex) nodes
-  bool lift[3];             ///< edge k is an intact interface with a single neighbour (its jump is lifted)
-  EdgeNodes neighbour[3];   ///< across edge k: the neighbour's edge nodes (read only where lift[k])
+template <class T>
+struct DgElementNodesOf {
+  T x[6][3];                  ///< current positions of the P2 nodes
+  T t[3][3];                  ///< current directors of the P1 (vertex) nodes
+  MaskOf<T> lift[3];          ///< edge k is an intact interface with a single neighbour (its jump is lifted)
+  EdgeNodesOf<T> neighbour[3];///< across edge k: the neighbour's edge nodes (read only where lift[k])
 };
+using DgElementNodes = DgElementNodesOf<double>;
 
 /// What the element forces write: the forces on the element's own nodes and the lifting fluxes on each
 /// neighbour's edge nodes (zero across an edge that is not lifted).
-struct DgElementForces {
-  double f[6][3];           ///< on the position nodes
-  double g[3][3];           ///< on the director nodes
-  EdgeForces neighbour[3];  ///< on the neighbour's edge nodes across edge k, in the neighbour's edge-local order
+template <class T>
+struct DgElementForcesOf {
+  T f[6][3];                    ///< on the position nodes
+  T g[3][3];                    ///< on the director nodes
+  EdgeForcesOf<T> neighbour[3]; ///< on the neighbour's edge nodes across edge k, in the neighbour's edge-local order
 };
+using DgElementForces = DgElementForcesOf<double>;
 
 /// DG kinematics of one element at its area points (theory.md §2, §5.2):
 /// a_i = d^DG_i phi_h (P1 lifting of the position jumps), d_i = d^DG_i t_h (P0 lifting of the director
@@ -269,21 +299,25 @@ struct DgElementForces {
 ///   e: the element's nodes and its neighbours' edge nodes (DgElementNodes).
 /// S, W: the reference triangle's shape data and the element's lifting weights.
 /// Output (overwritten): kin[q] for q = 0..num_area_points-1.
-KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const AreaPointShapes& S, const LiftingWeights& W,
-                                          const DgElementNodes& e, ShellKinematics kin[num_area_points]) {
+template <class T>
+KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRefOf<T>& R, const AreaPointShapes& S,
+                                          const LiftingWeightsOf<T>& W, const DgElementNodesOf<T>& e,
+                                          ShellKinematicsOf<T> kin[num_area_points]) {
   const auto& x = e.x;
   const auto& t = e.t;
   const auto& lift = e.lift;
-  // 1. Liftings of the one-sided jumps [u]^E = u^E - u^E' (theory.md §5.2).
-  double Rx[3][2][3][3] = {};  // [k][alpha][component][psi]
-  double Rt[3][2][3] = {};     // [k][alpha][component]
+  // 1. Liftings of the one-sided jumps [u]^E = u^E - u^E' (theory.md §5.2); in a batch also for the elements
+  //    whose edge k is not lifted (their neighbour nodes are zero), which step 2 and 3 then do not use.
+  T Rx[3][2][3][3] = {};  // [k][alpha][component][psi]
+  T Rt[3][2][3] = {};     // [k][alpha][component]
   for (int k = 0; k < 3; ++k) {
-    if (!lift[k]) continue;
+    if (!any(lift[k])) continue;
     for (int gp = 0; gp < num_edge_points; ++gp) {
-      const EdgePointShapes sh = edge_point_shapes(edge3_rule.s[gp], neighbour_edge_parameter(R.edge[k], gp));
-      const double *no = sh.p2, *nn = sh.p2_other, *lo = sh.p1, *ln = sh.p1_other;
+      const EdgePointShapesOf<T> sh = edge_point_shapes(edge3_rule.s[gp], neighbour_edge_parameter(R.edge[k], gp));
+      const double *no = sh.p2, *lo = sh.p1;
+      const T *nn = sh.p2_other, *ln = sh.p1_other;
       for (int c = 0; c < 3; ++c) {
-        double jx = 0, jt = 0;
+        T jx = 0, jt = 0;
         for (int j = 0; j < 3; ++j) jx += no[j] * x[edge_node(k, j)][c] - nn[j] * e.neighbour[k].x[j][c];
         for (int j = 0; j < 2; ++j) jt += lo[j] * t[edge_node(k, j)][c] - ln[j] * e.neighbour[k].t[j][c];
         for (int al = 0; al < 2; ++al) {
@@ -294,26 +328,28 @@ KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const AreaPoint
     }
   }
   // 2. The director's DG derivative: the P1 director and its lifting give the same one at every area point.
-  double ddc[3][2];  // [component][alpha]
+  T ddc[3][2];  // [component][alpha]
   for (int c = 0; c < 3; ++c)
     for (int al = 0; al < 2; ++al) {
-      double dd = 0;
+      T dd = 0;
       for (int a = 0; a < 3; ++a) dd += t[a][c] * S.dL[a][al];
       for (int k = 0; k < 3; ++k)
-        if (lift[k]) dd -= Rt[k][al][c];
+        if (any(lift[k])) dd = select(lift[k], dd - Rt[k][al][c], dd);
       ddc[c][al] = dd;
     }
   // 3. Area points: DG derivatives (theory.md §5.2).
   for (int q = 0; q < num_area_points; ++q) {
     for (int c = 0; c < 3; ++c) {
-      double aa[2];
-      const double* dd = ddc[c];
+      T aa[2];
+      const T* dd = ddc[c];
       for (int al = 0; al < 2; ++al) {
         aa[al] = 0;
         for (int A = 0; A < 6; ++A) aa[al] += x[A][c] * S.dN[q][A][al];
         for (int k = 0; k < 3; ++k) {
-          if (!lift[k]) continue;
-          for (int b = 0; b < 3; ++b) aa[al] -= Rx[k][al][c][b] * S.L[q][b];
+          if (!any(lift[k])) continue;
+          T lifted = aa[al];
+          for (int b = 0; b < 3; ++b) lifted -= Rx[k][al][c][b] * S.L[q][b];
+          aa[al] = select(lift[k], lifted, aa[al]);
         }
       }
       for (int i = 0; i < 2; ++i) {
@@ -337,10 +373,9 @@ KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const DgElement
 
 /// f[q][c] <- (Pi f)(xi_q): the P1 L2 projection on the element of point values f[q][0..n-1] (P from
 /// projection_matrix).
-template <int n>
-KOKKOS_INLINE_FUNCTION void project_p1(const double P[num_area_points][num_area_points],
-                                       double f[num_area_points][n]) {
-  double g[num_area_points][n];
+template <int n, class T>
+KOKKOS_INLINE_FUNCTION void project_p1(const T P[num_area_points][num_area_points], T f[num_area_points][n]) {
+  T g[num_area_points][n];
   for (int q = 0; q < num_area_points; ++q)
     for (int c = 0; c < n; ++c) {
       g[q][c] = 0;
@@ -352,9 +387,10 @@ KOKKOS_INLINE_FUNCTION void project_p1(const double P[num_area_points][num_area_
 
 /// Strains at the area points from the DG kinematics (theory.md §2), with the membrane strains projected by P
 /// when the element projects them (theory.md §5.4; P is not read otherwise).
-KOKKOS_INLINE_FUNCTION void dg_strains(const DgElementRef& R, const double P[num_area_points][num_area_points],
-                                       const ShellKinematics kin[num_area_points], double eps[num_area_points][3],
-                                       double gam[num_area_points][2], double rho[num_area_points][3]) {
+template <class T>
+KOKKOS_INLINE_FUNCTION void dg_strains(const DgElementRefOf<T>& R, const T P[num_area_points][num_area_points],
+                                       const ShellKinematicsOf<T> kin[num_area_points], T eps[num_area_points][3],
+                                       T gam[num_area_points][2], T rho[num_area_points][3]) {
   for (int q = 0; q < num_area_points; ++q) compute_strains(kin[q], R.ref[q], eps[q], gam[q], rho[q]);
   if (R.project_membrane) project_p1<3>(P, eps);
 }
@@ -376,28 +412,33 @@ KOKKOS_INLINE_FUNCTION void dg_strains(const DgElementRef& R, const ShellKinemat
 /// reference length, from the P1 L2 projections of its resultants: at[k][g][0..2] = sum_alpha (Pi n^alpha)(xi_g)
 /// nu_{E,alpha} (the force that the material beyond edge k exerts on E), at[k][g][3..5] the same for m^alpha,
 /// with nu_E the element's outward co-normal. Edge points in the element's own edge order.
-struct EdgeTractions {
-  double at[3][num_edge_points][6];
+template <class T>
+struct EdgeTractionsOf {
+  T at[3][num_edge_points][6];
 };
+using EdgeTractions = EdgeTractionsOf<double>;
 
 /// The sums over the area points that the edge terms need (theory.md §5.4): the moments of the parametric
 /// resultants n^alpha, m^alpha against the P1 lifting functions psi, sum_q w_q j0_q (.) (x) psi(xi_q).
-struct ResultantMoments {
-  double x[2][3][3] = {};  ///< [alpha][component][psi]: sum_q w j0 n^alpha (x) psi
-  double t[2][3] = {};     ///< [alpha][component]:      sum_q w j0 m^alpha
-  double m[2][3][3] = {};  ///< [alpha][component][psi]: sum_q w j0 m^alpha (x) psi (only for edge tractions)
+template <class T>
+struct ResultantMomentsOf {
+  T x[2][3][3] = {};  ///< [alpha][component][psi]: sum_q w j0 n^alpha (x) psi
+  T t[2][3] = {};     ///< [alpha][component]:      sum_q w j0 m^alpha
+  T m[2][3][3] = {};  ///< [alpha][component][psi]: sum_q w j0 m^alpha (x) psi (only for edge tractions)
 };
+using ResultantMoments = ResultantMomentsOf<double>;
 
 /// The edge tractions of the projected resultants (theory.md §9.5 step 1):
 /// W^u_{g,alpha} = 1/2 omega_g nu_alpha Mpsi^-1 psi(xi_g).
-KOKKOS_INLINE_FUNCTION void edge_tractions_of(const DgElementRef& R, const LiftingWeights& W,
-                                              const ResultantMoments& Pi, EdgeTractions& edge_tractions) {
+template <class T>
+KOKKOS_INLINE_FUNCTION void edge_tractions_of(const DgElementRefOf<T>& R, const LiftingWeightsOf<T>& W,
+                                              const ResultantMomentsOf<T>& Pi, EdgeTractionsOf<T>& edge_tractions) {
   for (int k = 0; k < 3; ++k)
     for (int gp = 0; gp < num_edge_points; ++gp) {
-      const DgEdgeRef& E = R.edge[k];
-      const double s = 2.0 / E.omega[gp];
+      const DgEdgeRefOf<T>& E = R.edge[k];
+      const T s = 2.0 / E.omega[gp];
       for (int c = 0; c < 3; ++c) {
-        double n = 0, m = 0;
+        T n = 0, m = 0;
         for (int al = 0; al < 2; ++al)
           for (int b = 0; b < 3; ++b) n += Pi.x[al][c][b] * W.Wu[k][gp][al][b], m += Pi.m[al][c][b] * W.Wu[k][gp][al][b];
         edge_tractions.at[k][gp][c] = s * n, edge_tractions.at[k][gp][3 + c] = s * m;
@@ -407,29 +448,35 @@ KOKKOS_INLINE_FUNCTION void edge_tractions_of(const DgElementRef& R, const Lifti
 
 /// The lifting fluxes F_g, H_g (theory.md §5.4) added to the forces on the element's own edge nodes and written
 /// to the neighbours' edge nodes (zero across an edge that is not lifted).
-KOKKOS_INLINE_FUNCTION void add_lifting_fluxes(const DgElementRef& R, const LiftingWeights& W, const bool lift[3],
-                                               const ResultantMoments& Pi, DgElementForces& out) {
+template <class T>
+KOKKOS_INLINE_FUNCTION void add_lifting_fluxes(const DgElementRefOf<T>& R, const LiftingWeightsOf<T>& W,
+                                               const MaskOf<T> lift[3], const ResultantMomentsOf<T>& Pi,
+                                               DgElementForcesOf<T>& out) {
   for (int k = 0; k < 3; ++k) {
-    EdgeForces& across = out.neighbour[k];
+    EdgeForcesOf<T>& across = out.neighbour[k];
     for (int j = 0; j < 3; ++j) across.f[j][0] = across.f[j][1] = across.f[j][2] = 0;
     for (int j = 0; j < 2; ++j) across.g[j][0] = across.g[j][1] = across.g[j][2] = 0;
-    if (!lift[k]) continue;
+    if (!any(lift[k])) continue;
+    const MaskOf<T> lifted = lift[k];
     for (int gp = 0; gp < num_edge_points; ++gp) {
-      const EdgePointShapes sh = edge_point_shapes(edge3_rule.s[gp], neighbour_edge_parameter(R.edge[k], gp));
-      const double *no = sh.p2, *nn = sh.p2_other, *lo = sh.p1, *ln = sh.p1_other;
+      const EdgePointShapesOf<T> sh = edge_point_shapes(edge3_rule.s[gp], neighbour_edge_parameter(R.edge[k], gp));
+      const double *no = sh.p2, *lo = sh.p1;
+      const T *nn = sh.p2_other, *ln = sh.p1_other;
       for (int c = 0; c < 3; ++c) {
-        double F = 0, H = 0;
+        T F = 0, H = 0;
         for (int al = 0; al < 2; ++al) {
           for (int b = 0; b < 3; ++b) F += Pi.x[al][c][b] * W.Wu[k][gp][al][b];
           H += Pi.t[al][c] * W.Wt[k][gp][al];
         }
         for (int j = 0; j < 3; ++j) {
-          out.f[edge_node(k, j)][c] -= no[j] * F;
-          across.f[j][c] += nn[j] * F;
+          T& own = out.f[edge_node(k, j)][c];
+          own = select(lifted, own - no[j] * F, own);
+          across.f[j][c] = select(lifted, across.f[j][c] + nn[j] * F, across.f[j][c]);
         }
         for (int j = 0; j < 2; ++j) {
-          out.g[edge_node(k, j)][c] -= lo[j] * H;
-          across.g[j][c] += ln[j] * H;
+          T& own = out.g[edge_node(k, j)][c];
+          own = select(lifted, own - lo[j] * H, own);
+          across.g[j][c] = select(lifted, across.g[j][c] + ln[j] * H, across.g[j][c]);
         }
       }
     }
@@ -443,40 +490,40 @@ KOKKOS_INLINE_FUNCTION void add_lifting_fluxes(const DgElementRef& R, const Lift
 /// Outputs (overwritten): the forces on the element's own nodes and the lifting fluxes on the neighbours' edge
 /// nodes (DgElementForces); the edge tractions if `edge_tractions` is not null (the nucleation check needs them).
 /// Returns the element's strain energy sum_q w_q j0_q W.
-template <class Law>
-KOKKOS_INLINE_FUNCTION double dg_element_forces(const DgElementRef& R, const DgElementNodes& e, const Law& law,
-                                                DgElementForces& out, EdgeTractions* edge_tractions = nullptr) {
+template <class T, class Law>
+KOKKOS_INLINE_FUNCTION T dg_element_forces(const DgElementRefOf<T>& R, const DgElementNodesOf<T>& e, const Law& law,
+                                           DgElementForcesOf<T>& out, EdgeTractionsOf<T>* edge_tractions = nullptr) {
   // 1.-2. Liftings of the jumps and DG kinematics at the area points.
   AreaPointShapes S;
   area_point_shapes(S);
-  LiftingWeights W;
+  LiftingWeightsOf<T> W;
   lifting_weights(R, W);
-  double P[num_area_points][num_area_points];
+  T P[num_area_points][num_area_points];
   if (R.project_membrane) projection_matrix(R, S, P);
-  ShellKinematics kins[num_area_points];
+  ShellKinematicsOf<T> kins[num_area_points];
   dg_kinematics(R, S, W, e, kins);
   // 2'. Area points: strains, resultants, own forces; accumulate the projections Pi.
   auto& f = out.f;
   auto& g = out.g;
   for (int A = 0; A < 6; ++A) f[A][0] = f[A][1] = f[A][2] = 0;
   for (int a = 0; a < 3; ++a) g[a][0] = g[a][1] = g[a][2] = 0;
-  ResultantMoments Pi;
-  double eps[num_area_points][3], gam[num_area_points][2], rho[num_area_points][3];
+  ResultantMomentsOf<T> Pi;
+  T eps[num_area_points][3], gam[num_area_points][2], rho[num_area_points][3];
   dg_strains(R, P, kins, eps, gam, rho);
-  double N[num_area_points][3], Q[num_area_points][2], M[num_area_points][3];
-  double energy = 0;
+  T N[num_area_points][3], Q[num_area_points][2], M[num_area_points][3];
+  T energy = 0;
   for (int q = 0; q < num_area_points; ++q) energy += R.wj0[q] * law(q, eps[q], gam[q], rho[q], N[q], Q[q], M[q]);
   if (R.project_membrane) project_p1<3>(P, N);  // the gradient of the energy of the projected strains
   for (int q = 0; q < num_area_points; ++q) {
-    const ShellKinematics& kin = kins[q];
-    double n[2][3], m[2][3], l[3];
+    const ShellKinematicsOf<T>& kin = kins[q];
+    T n[2][3], m[2][3], l[3];
     stress_power_vectors(kin, N[q], Q[q], M[q], n, m, l);
-    const double w = R.wj0[q];
+    const T w = R.wj0[q];
     for (int al = 0; al < 2; ++al)
       for (int c = 0; c < 3; ++c) {
         // parametric components n^alpha = (J^-1)_{alpha i} n^i
-        const double na = R.Jinv[q][al][0] * n[0][c] + R.Jinv[q][al][1] * n[1][c];
-        const double ma = R.Jinv[q][al][0] * m[0][c] + R.Jinv[q][al][1] * m[1][c];
+        const T na = R.Jinv[q][al][0] * n[0][c] + R.Jinv[q][al][1] * n[1][c];
+        const T ma = R.Jinv[q][al][0] * m[0][c] + R.Jinv[q][al][1] * m[1][c];
         for (int A = 0; A < 6; ++A) f[A][c] += w * S.dN[q][A][al] * na;
         for (int a = 0; a < 3; ++a) g[a][c] += w * S.dL[a][al] * ma;
         for (int b = 0; b < 3; ++b) Pi.x[al][c][b] += w * na * S.L[q][b];

@@ -13,18 +13,23 @@
 
 namespace shellfrac::disc {
 
-/// Kinematics at one area quadrature point (current or reference configuration).
-struct ShellKinematics {
-  double a[2][3];  ///< a_i = d^DG_i phi_h, in the local Cartesian reference frame (already times J^{-1})
-  double d[2][3];  ///< d_i = d^DG_i t_h, likewise
-  double t[3];     ///< t_h(xi_q): the interpolated director, NOT normalized (theory.md §2)
+/// Kinematics at one area quadrature point (current or reference configuration); T is double, or Batch for a
+/// batch of elements in lock-step (lanes.hpp).
+template <class T>
+struct ShellKinematicsOf {
+  T a[2][3];  ///< a_i = d^DG_i phi_h, in the local Cartesian reference frame (already times J^{-1})
+  T d[2][3];  ///< d_i = d^DG_i t_h, likewise
+  T t[3];     ///< t_h(xi_q): the interpolated director, NOT normalized (theory.md §2)
 };
+using ShellKinematics = ShellKinematicsOf<double>;
 
 /// Reference offsets of the shear and bending strains at one quadrature point (theory.md §2), Voigt.
-struct ShellReference {
-  double gam0[2];  ///< gam0_i = a0_i . t0
-  double rho0[3];  ///< [rho0_11, rho0_22, 2 rho0_12], rho0_ij = 1/2 (a0_i . d0_j + a0_j . d0_i)
+template <class T>
+struct ShellReferenceOf {
+  T gam0[2];  ///< gam0_i = a0_i . t0
+  T rho0[3];  ///< [rho0_11, rho0_22, 2 rho0_12], rho0_ij = 1/2 (a0_i . d0_j + a0_j . d0_i)
 };
+using ShellReference = ShellReferenceOf<double>;
 
 
 /// Reference offsets from the reference kinematics kin0 (a0_i, d0_i, t0). theory.md §2: a0_i = e_i
@@ -44,8 +49,9 @@ KOKKOS_INLINE_FUNCTION ShellReference make_shell_reference(const ShellKinematics
 ///   eps_ij = 1/2 (a_i . a_j - delta_ij),  gam_i = a_i . t - gam0_i,
 ///   rho_ij = 1/2 (a_i . d_j + a_j . d_i) - rho0_ij.
 /// Outputs eps[3] = [eps_11, eps_22, 2 eps_12], gam[2], rho[3] = [rho_11, rho_22, 2 rho_12].
-KOKKOS_INLINE_FUNCTION void compute_strains(const ShellKinematics& kin, const ShellReference& ref, double eps[3],
-                                            double gam[2], double rho[3]) {
+template <class T>
+KOKKOS_INLINE_FUNCTION void compute_strains(const ShellKinematicsOf<T>& kin, const ShellReferenceOf<T>& ref, T eps[3],
+                                            T gam[2], T rho[3]) {
   eps[0] = 0.5 * (dot3(kin.a[0], kin.a[0]) - 1.0);
   eps[1] = 0.5 * (dot3(kin.a[1], kin.a[1]) - 1.0);
   eps[2] = dot3(kin.a[0], kin.a[1]);  // 2 eps_12

@@ -13,8 +13,9 @@ namespace shellfrac::disc {
 
 // ---------------------------------------------------------------- vectors
 
-/// a . b
-KOKKOS_INLINE_FUNCTION double dot3(const double a[3], const double b[3]) {
+/// a . b (T: double, or Batch for elements in lock-step, lanes.hpp)
+template <class T>
+KOKKOS_INLINE_FUNCTION T dot3(const T a[3], const T b[3]) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 

@@ -13,10 +13,11 @@ namespace shellfrac::disc {
 
 /// N[3] = [N11, N22, N12], Q[2] = [Q1, Q2], M[3] = [M11, M22, M12] (per unit reference area).
 /// Outputs n[i][:] = n^i, m[i][:] = m^i (i = 0,1 for i = 1,2) and l[3].
-KOKKOS_INLINE_FUNCTION void stress_power_vectors(const ShellKinematics& kin, const double N[3], const double Q[2],
-                                                 const double M[3], double n[2][3], double m[2][3], double l[3]) {
-  const double Nt[2][2] = {{N[0], N[2]}, {N[2], N[1]}};
-  const double Mt[2][2] = {{M[0], M[2]}, {M[2], M[1]}};
+template <class T>
+KOKKOS_INLINE_FUNCTION void stress_power_vectors(const ShellKinematicsOf<T>& kin, const T N[3], const T Q[2],
+                                                 const T M[3], T n[2][3], T m[2][3], T l[3]) {
+  const T Nt[2][2] = {{N[0], N[2]}, {N[2], N[1]}};
+  const T Mt[2][2] = {{M[0], M[2]}, {M[2], M[1]}};
   for (int i = 0; i < 2; ++i) {
     for (int k = 0; k < 3; ++k) {
       n[i][k] = Nt[i][0] * kin.a[0][k] + Nt[i][1] * kin.a[1][k] + Q[i] * kin.t[k] + Mt[i][0] * kin.d[0][k] +

@@ -13,13 +13,15 @@
 
 namespace shellfrac::materials {
 
-/// Section stiffnesses of an elastic shell section.
-struct ElasticSection {
-  double Dn;  ///< membrane stiffness E h / (1 - nu^2)
-  double Dm;  ///< bending stiffness E h^3 / (12 (1 - nu^2))
-  double Ds;  ///< transverse shear stiffness kappa G h, G = E / (2 (1 + nu))
-  double nu;  ///< Poisson's ratio
+/// Section stiffnesses of an elastic shell section (T: double, or one per element of a batch, disc/lanes.hpp).
+template <class T>
+struct ElasticSectionOf {
+  T Dn;  ///< membrane stiffness E h / (1 - nu^2)
+  T Dm;  ///< bending stiffness E h^3 / (12 (1 - nu^2))
+  T Ds;  ///< transverse shear stiffness kappa G h, G = E / (2 (1 + nu))
+  T nu;  ///< Poisson's ratio
 };
+using ElasticSection = ElasticSectionOf<double>;
 
 /// Host helper: section stiffnesses from Young's modulus E, Poisson's ratio nu, thickness h and shear
 /// correction factor kappa (default 5/6). No validation here (MaterialParams/BlockParams validate).
@@ -34,7 +36,8 @@ inline ElasticSection make_elastic_section(double E, double nu, double h, double
 
 namespace detail {
 /// y = D C0 x for a Voigt vector x with engineering shear.
-KOKKOS_INLINE_FUNCTION void apply_c0(double D, double nu, const double x[3], double y[3]) {
+template <class T>
+KOKKOS_INLINE_FUNCTION void apply_c0(T D, T nu, const T x[3], T y[3]) {
   y[0] = D * (x[0] + nu * x[1]);
   y[1] = D * (nu * x[0] + x[1]);
   y[2] = D * (0.5 * (1.0 - nu) * x[2]);
@@ -42,11 +45,12 @@ KOKKOS_INLINE_FUNCTION void apply_c0(double D, double nu, const double x[3], dou
 }  // namespace detail
 
 /// Resultants with plastic strains: N = D_n C0 (eps - eps_p), Q = D_s (gam - gam_p), M = D_m C0 (rho - rho_p).
-KOKKOS_INLINE_FUNCTION void elastic_resultants(const ElasticSection& s, const double eps[3], const double gam[2],
-                                               const double rho[3], const double eps_p[3], const double gam_p[2],
-                                               const double rho_p[3], double N[3], double Q[2], double M[3]) {
-  const double ee[3] = {eps[0] - eps_p[0], eps[1] - eps_p[1], eps[2] - eps_p[2]};
-  const double re[3] = {rho[0] - rho_p[0], rho[1] - rho_p[1], rho[2] - rho_p[2]};
+template <class T>
+KOKKOS_INLINE_FUNCTION void elastic_resultants(const ElasticSectionOf<T>& s, const T eps[3], const T gam[2],
+                                               const T rho[3], const T eps_p[3], const T gam_p[2], const T rho_p[3],
+                                               T N[3], T Q[2], T M[3]) {
+  const T ee[3] = {eps[0] - eps_p[0], eps[1] - eps_p[1], eps[2] - eps_p[2]};
+  const T re[3] = {rho[0] - rho_p[0], rho[1] - rho_p[1], rho[2] - rho_p[2]};
   detail::apply_c0(s.Dn, s.nu, ee, N);
   detail::apply_c0(s.Dm, s.nu, re, M);
   Q[0] = s.Ds * (gam[0] - gam_p[0]);
@@ -54,28 +58,29 @@ KOKKOS_INLINE_FUNCTION void elastic_resultants(const ElasticSection& s, const do
 }
 
 /// Purely elastic resultants (eps_p = gam_p = rho_p = 0).
-KOKKOS_INLINE_FUNCTION void elastic_resultants(const ElasticSection& s, const double eps[3], const double gam[2],
-                                               const double rho[3], double N[3], double Q[2], double M[3]) {
-  const double zero[3] = {0.0, 0.0, 0.0};
+template <class T>
+KOKKOS_INLINE_FUNCTION void elastic_resultants(const ElasticSectionOf<T>& s, const T eps[3], const T gam[2],
+                                               const T rho[3], T N[3], T Q[2], T M[3]) {
+  const T zero[3] = {0.0, 0.0, 0.0};
   elastic_resultants(s, eps, gam, rho, zero, zero, zero, N, Q, M);
 }
 
 /// Stored energy per unit reference area with plastic strains (theory.md §3.1).
-KOKKOS_INLINE_FUNCTION double elastic_energy(const ElasticSection& s, const double eps[3], const double gam[2],
-                                             const double rho[3], const double eps_p[3], const double gam_p[2],
-                                             const double rho_p[3]) {
-  double N[3], Q[2], M[3];
+template <class T>
+KOKKOS_INLINE_FUNCTION T elastic_energy(const ElasticSectionOf<T>& s, const T eps[3], const T gam[2], const T rho[3],
+                                        const T eps_p[3], const T gam_p[2], const T rho_p[3]) {
+  T N[3], Q[2], M[3];
   elastic_resultants(s, eps, gam, rho, eps_p, gam_p, rho_p, N, Q, M);
-  double w = 0.0;
+  T w = 0.0;
   for (int k = 0; k < 3; ++k) w += N[k] * (eps[k] - eps_p[k]) + M[k] * (rho[k] - rho_p[k]);
   w += Q[0] * (gam[0] - gam_p[0]) + Q[1] * (gam[1] - gam_p[1]);
   return 0.5 * w;
 }
 
 /// Purely elastic stored energy per unit reference area.
-KOKKOS_INLINE_FUNCTION double elastic_energy(const ElasticSection& s, const double eps[3], const double gam[2],
-                                             const double rho[3]) {
-  const double zero[3] = {0.0, 0.0, 0.0};
+template <class T>
+KOKKOS_INLINE_FUNCTION T elastic_energy(const ElasticSectionOf<T>& s, const T eps[3], const T gam[2], const T rho[3]) {
+  const T zero[3] = {0.0, 0.0, 0.0};
   return elastic_energy(s, eps, gam, rho, zero, zero, zero);
 }
 

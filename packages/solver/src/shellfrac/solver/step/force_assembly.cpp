@@ -8,6 +8,7 @@
 #include "shellfrac/solver/fracture/cohesive_interface.hpp"
 #include "shellfrac/solver/model/element_inputs.hpp"
 #include "shellfrac/solver/model/shell_model.hpp"
+#include "shellfrac/solver/step/element_batch.hpp"
 
 namespace shellfrac::solver {
 
@@ -66,65 +67,184 @@ void ForceAssembly::compute_forces(ShellState& s, const std::vector<materials::C
   gather(s);
 }
 
-void ForceAssembly::element_kernel(ShellState& s) {
-  ScopedTimer timer(times_.element);
-  const ConstPositionView x = kernel_view(std::as_const(s.x));
-  const ConstDirectorView t = kernel_view(std::as_const(s.t));
-  const PositionView f = kernel_view(s.internal_force);
-  const DirectorView g = kernel_view(s.director_force);
-  const auto strain_energy = kernel_view(s.strain_energy);
-  const KernelView<LiftingFluxes> fluxes = kernel_view(flux_);
-  const KernelView<disc::EdgeTractions> tractions = kernel_view(edge_tractions_);
-  const bool edge_tractions = !edge_tractions_.empty();
-  const auto refs = kernel_view(model_.element_refs);
-  const auto lifted = kernel_view(model_.lifted);
-  const auto block = kernel_view(model_.dm.element_blocks());
-  const auto elastic_section = kernel_view(model_.block_elastic);
-  const auto plastic_section = kernel_view(model_.block_plastic);
-  const auto block_is_plastic = kernel_view(model_.block_is_plastic);
-  const auto plastic = kernel_view(s.plastic);
-  const auto plastic_work = kernel_view(plastic_work_increment_);
-  const auto return_failed = kernel_view(return_failed_);
-  const NeighborViews nb(model_.dm);
-  static const std::string label_shell_element_forces("shellfrac::ShellElementForces");
-  Kokkos::parallel_for(label_shell_element_forces, KernelRange(0, model_.owned), [=](const LocalId le) {
-    disc::DgElementNodes in;
-    element_inputs(nb, x, t, lifted(le), le, in);
-    disc::DgElementForces out;
-    disc::EdgeTractions* edge = edge_tractions ? &tractions(le) : nullptr;
-    const disc::DgElementRef& R = refs(le);
+namespace {
+
+/// The element kernel (docs/theory.md §5.4) over the owned elements, batch_width consecutive elements at a time in
+/// lock-step (disc/lanes.hpp; docs/performance.md, "The batched element kernel"). A batch runs the same templated
+/// code as one element, on Batch numbers: each element's arithmetic is the same sequence of IEEE operations in a
+/// batch as on its own, so the results do not depend on which elements share a batch (that is, on the
+/// partition). The last, incomplete batch and a batch whose elements differ in their membrane treatment run
+/// element by element; a batch with a plastic element calls the point law lane by lane.
+struct ElementForcesKernel {
+  ConstPositionView x;
+  ConstDirectorView t;
+  PositionView f;
+  DirectorView g;
+  ViewOf<Scalars> strain_energy;
+  KernelView<LiftingFluxes> fluxes;
+  KernelView<disc::EdgeTractions> tractions;
+  bool edge_tractions;
+  KernelView<const disc::DgElementRef> refs;
+  KernelView<const std::array<bool, 3>> lifted;
+  KernelView<const int> block;
+  KernelView<const materials::ElasticSection> elastic_section;
+  KernelView<const materials::PlasticSection> plastic_section;
+  KernelView<const char> block_is_plastic;
+  KernelView<materials::PlasticState> plastic;
+  KernelView<double> plastic_work;
+  KernelView<int> return_failed;
+  NeighborViews nb;
+  LocalId owned;
+
+  /// The point law of element le at area point q: elastic, or the return map of resultant plasticity from the
+  /// state of the last step to the new one in place (each element reads and writes only its own points), adding
+  /// its plastic work to `work` and a failed return to `failed`. Returns the stored energy per unit area.
+  KOKKOS_INLINE_FUNCTION double point_law(LocalId le, int q, const double eps[3], const double gam[2],
+                                          const double rho[3], double N[3], double Q[2], double M[3], double& work,
+                                          int& failed) const {
     const int blk = block(le);
-    if (block_is_plastic(blk)) {
-      // Resultant plasticity: the return map at area point q from the state of the last step to the new one,
-      // in place (each element reads and writes only its own points).
-      const materials::PlasticSection ps = plastic_section(blk);
-      int failed = 0;
-      double work = 0;
-      auto law = [&](int q, const double eps[3], const double gam[2], const double rho[3], double N[3], double Q[2],
-                     double M[3]) {
-        materials::PlasticState& st = plastic(le * nq + q);
-        const auto r = materials::resultant_return_map(ps, eps, gam, rho, st, st, N, Q, M);
-        work += R.wj0[q] * r.plastic_work;
-        failed |= r.converged ? 0 : 1;
-        return materials::elastic_energy(ps.elastic, eps, gam, rho, st.eps_p, st.gam_p, st.rho_p);
-      };
-      strain_energy(le) = disc::dg_element_forces(R, in, law, out, edge);
-      plastic_work(le) = work, return_failed(le) = failed;
-    } else {
-      const materials::ElasticSection sc = elastic_section(blk);
-      auto law = [&sc](int, const double eps[3], const double gam[2], const double rho[3], double N[3], double Q[2],
-                       double M[3]) {
-        materials::elastic_resultants(sc, eps, gam, rho, N, Q, M);
-        return materials::elastic_energy(sc, eps, gam, rho);
-      };
-      strain_energy(le) = disc::dg_element_forces(R, in, law, out, edge);
+    if (!block_is_plastic(blk)) {
+      const materials::ElasticSection& sc = elastic_section(blk);
+      materials::elastic_resultants(sc, eps, gam, rho, N, Q, M);
+      return materials::elastic_energy(sc, eps, gam, rho);
     }
+    const materials::PlasticSection& ps = plastic_section(blk);
+    materials::PlasticState& st = plastic(le * nq + q);
+    const auto r = materials::resultant_return_map(ps, eps, gam, rho, st, st, N, Q, M);
+    work += refs(le).wj0[q] * r.plastic_work;
+    failed |= r.converged ? 0 : 1;
+    return materials::elastic_energy(ps.elastic, eps, gam, rho, st.eps_p, st.gam_p, st.rho_p);
+  }
+
+  /// Writes the plastic work and the return-map flag of element le (plastic blocks only).
+  KOKKOS_INLINE_FUNCTION void store_plastic(LocalId le, double work, int failed) const {
+    if (block_is_plastic(block(le))) plastic_work(le) = work, return_failed(le) = failed;
+  }
+
+  /// Writes element le's forces on its own nodes and its lifting fluxes.
+  KOKKOS_INLINE_FUNCTION void store_forces(LocalId le, const disc::DgElementForces& out) const {
     for (int A = 0; A < position_nodes; ++A)
       for (int c = 0; c < 3; ++c) f(le, A, c) = out.f[A][c];
     for (int a = 0; a < director_nodes; ++a)
       for (int c = 0; c < 3; ++c) g(le, a, c) = out.g[a][c];
     for (int k = 0; k < 3; ++k) fluxes(le).across[k] = out.neighbour[k];
-  });
+  }
+
+  /// One element on its own.
+  KOKKOS_INLINE_FUNCTION void one_element(LocalId le) const {
+    disc::DgElementNodes in;
+    element_inputs(nb, x, t, lifted(le), le, in);
+    disc::DgElementForces out;
+    double work = 0;
+    int failed = 0;
+    auto law = [&](int q, const double eps[3], const double gam[2], const double rho[3], double N[3], double Q[2],
+                   double M[3]) { return point_law(le, q, eps, gam, rho, N, Q, M, work, failed); };
+    strain_energy(le) = disc::dg_element_forces(refs(le), in, law, out, edge_tractions ? &tractions(le) : nullptr);
+    store_forces(le, out);
+    store_plastic(le, work, failed);
+  }
+
+  /// The batch_width elements from `first` in lock-step.
+  KOKKOS_INLINE_FUNCTION void batch(LocalId first) const {
+    constexpr int W = disc::batch_width;
+    disc::DgElementRefOf<Batch> R;
+    disc::DgElementNodesOf<Batch> in;
+    bool all_elastic = true;
+    materials::ElasticSectionOf<Batch> sc;
+    for (int i = 0; i < W; ++i) {
+      const LocalId le = first + i;
+      lanes::load(R, refs(le), i);
+      disc::DgElementNodes one;
+      element_inputs(nb, x, t, lifted(le), le, one);
+      lanes::load(in, one, i);
+      const int blk = block(le);
+      if (block_is_plastic(blk))
+        all_elastic = false;
+      else
+        lanes::load(sc, elastic_section(blk), i);
+    }
+    disc::DgElementForcesOf<Batch> out;
+    disc::EdgeTractionsOf<Batch> at;
+    disc::EdgeTractionsOf<Batch>* at_or_null = edge_tractions ? &at : nullptr;
+    double work[W] = {};
+    int failed[W] = {};
+    Batch energy;
+    if (all_elastic) {
+      auto law = [&sc](int, const Batch eps[3], const Batch gam[2], const Batch rho[3], Batch N[3], Batch Q[2],
+                       Batch M[3]) {
+        materials::elastic_resultants(sc, eps, gam, rho, N, Q, M);
+        return materials::elastic_energy(sc, eps, gam, rho);
+      };
+      energy = disc::dg_element_forces(R, in, law, out, at_or_null);
+    } else {
+      auto law = [&](int q, const Batch eps[3], const Batch gam[2], const Batch rho[3], Batch N[3], Batch Q[2],
+                     Batch M[3]) {
+        Batch w;
+        for (int i = 0; i < W; ++i) {
+          double e[3], gm[2], r[3], n[3], qs[2], m[3];
+          for (int c = 0; c < 3; ++c) e[c] = eps[c][i], r[c] = rho[c][i];
+          for (int c = 0; c < 2; ++c) gm[c] = gam[c][i];
+          w.set(i, point_law(first + i, q, e, gm, r, n, qs, m, work[i], failed[i]));
+          for (int c = 0; c < 3; ++c) N[c].set(i, n[c]), M[c].set(i, m[c]);
+          for (int c = 0; c < 2; ++c) Q[c].set(i, qs[c]);
+        }
+        return w;
+      };
+      energy = disc::dg_element_forces(R, in, law, out, at_or_null);
+    }
+    for (int i = 0; i < W; ++i) {
+      const LocalId le = first + i;
+      strain_energy(le) = energy[i];
+      for (int A = 0; A < position_nodes; ++A)
+        for (int c = 0; c < 3; ++c) f(le, A, c) = out.f[A][c][i];
+      for (int a = 0; a < director_nodes; ++a)
+        for (int c = 0; c < 3; ++c) g(le, a, c) = out.g[a][c][i];
+      for (int k = 0; k < 3; ++k) lanes::store(out.neighbour[k], fluxes(le).across[k], i);
+      if (edge_tractions) lanes::store(at, tractions(le), i);
+      store_plastic(le, work[i], failed[i]);
+    }
+  }
+
+  /// Batch b: the elements b * batch_width ... (b + 1) * batch_width - 1 that are owned.
+  KOKKOS_INLINE_FUNCTION void operator()(LocalId b) const {
+    const LocalId first = b * disc::batch_width;
+    const LocalId end = first + disc::batch_width;
+    bool same_membrane = end <= owned;
+    for (LocalId le = first + 1; same_membrane && le < end; ++le)
+      same_membrane = refs(le).project_membrane == refs(first).project_membrane;
+    if (same_membrane)
+      batch(first);
+    else
+      for (LocalId le = first; le < end && le < owned; ++le) one_element(le);
+  }
+};
+
+}  // namespace
+
+void ForceAssembly::element_kernel(ShellState& s) {
+  ScopedTimer timer(times_.element);
+  const ElementForcesKernel kernel{kernel_view(std::as_const(s.x)),
+                                  kernel_view(std::as_const(s.t)),
+                                  kernel_view(s.internal_force),
+                                  kernel_view(s.director_force),
+                                  kernel_view(s.strain_energy),
+                                  kernel_view(flux_),
+                                  kernel_view(edge_tractions_),
+                                  !edge_tractions_.empty(),
+                                  kernel_view(model_.element_refs),
+                                  kernel_view(model_.lifted),
+                                  kernel_view(model_.dm.element_blocks()),
+                                  kernel_view(model_.block_elastic),
+                                  kernel_view(model_.block_plastic),
+                                  kernel_view(model_.block_is_plastic),
+                                  kernel_view(s.plastic),
+                                  kernel_view(plastic_work_increment_),
+                                  kernel_view(return_failed_),
+                                  NeighborViews(model_.dm),
+                                  model_.owned};
+  const LocalId batches = (model_.owned + disc::batch_width - 1) / disc::batch_width;
+  static const std::string label_shell_element_forces("shellfrac::ShellElementForces");
+  Kokkos::parallel_for(label_shell_element_forces, KernelRange(0, batches), kernel);
 }
 
 void ForceAssembly::interface_kernel(ShellState& s, const std::vector<materials::CohesiveParams>& cohesive) {
