@@ -4,11 +4,11 @@
 #include <utility>
 
 #include "shellfrac/decomposition/distributed_mesh.hpp"
+#include "shellfrac/disc/element_lanes.hpp"
 #include "shellfrac/materials/elastic_resultant.hpp"
 #include "shellfrac/solver/fracture/cohesive_interface.hpp"
 #include "shellfrac/solver/model/element_inputs.hpp"
 #include "shellfrac/solver/model/shell_model.hpp"
-#include "shellfrac/solver/step/element_batch.hpp"
 
 namespace shellfrac::solver {
 
@@ -68,6 +68,15 @@ void ForceAssembly::compute_forces(ShellState& s, const std::vector<materials::C
 }
 
 namespace {
+
+using disc::Batch;
+namespace lanes = disc::lanes;
+
+/// Lane `lane` of a batch's elastic sections <- an element's.
+KOKKOS_INLINE_FUNCTION void load_lane(materials::ElasticSectionOf<Batch>& b, const materials::ElasticSection& s,
+                                      int lane) {
+  b.Dn.set(lane, s.Dn), b.Dm.set(lane, s.Dm), b.Ds.set(lane, s.Ds), b.nu.set(lane, s.nu);
+}
 
 /// The element kernel (docs/theory.md §5.4) over the owned elements, batch_width consecutive elements at a time in
 /// lock-step (disc/lanes.hpp; docs/performance.md, "The batched element kernel"). A batch runs the same templated
@@ -161,7 +170,7 @@ struct ElementForcesKernel {
       if (block_is_plastic(blk))
         all_elastic = false;
       else
-        lanes::load(sc, elastic_section(blk), i);
+        load_lane(sc, elastic_section(blk), i);
     }
     disc::DgElementForcesOf<Batch> out;
     disc::EdgeTractionsOf<Batch> at;
@@ -195,11 +204,9 @@ struct ElementForcesKernel {
     for (int i = 0; i < W; ++i) {
       const LocalId le = first + i;
       strain_energy(le) = energy[i];
-      for (int A = 0; A < position_nodes; ++A)
-        for (int c = 0; c < 3; ++c) f(le, A, c) = out.f[A][c][i];
-      for (int a = 0; a < director_nodes; ++a)
-        for (int c = 0; c < 3; ++c) g(le, a, c) = out.g[a][c][i];
-      for (int k = 0; k < 3; ++k) lanes::store(out.neighbour[k], fluxes(le).across[k], i);
+      disc::DgElementForces one;
+      lanes::store(out, one, i);
+      store_forces(le, one);
       if (edge_tractions) lanes::store(at, tractions(le), i);
       store_plastic(le, work[i], failed[i]);
     }

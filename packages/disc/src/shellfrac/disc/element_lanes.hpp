@@ -1,18 +1,13 @@
 #pragma once
-/// \file element_batch.hpp
-/// The element kernel's data for a batch of elements in lock-step (disc/lanes.hpp; docs/performance.md, "The
+/// \file element_lanes.hpp
+/// The element functions' data for a batch of elements in lock-step (lanes.hpp; docs/performance.md, "The
 /// batched element kernel"): lane i of each batched struct is element i of the batch. Loading copies an element's
 /// struct into its lane, storing copies a lane out to the element's struct; the copies are exact, so a lane
 /// holds bit for bit what the element's own struct holds.
 #include "shellfrac/disc/dg_element.hpp"
 #include "shellfrac/disc/lanes.hpp"
-#include "shellfrac/materials/elastic_resultant.hpp"
 
-namespace shellfrac::solver {
-
-using disc::Batch;
-
-namespace lanes {
+namespace shellfrac::disc::lanes {
 
 /// Lane `lane` of the n batched values b <- the n values s.
 KOKKOS_INLINE_FUNCTION void load(Batch* b, const double* s, int n, int lane) {
@@ -48,19 +43,19 @@ KOKKOS_INLINE_FUNCTION const Batch* batches_of(const A& a) {
 /// Lane `lane` of batched array b <- array s of the same shape in double.
 template <class B, class S>
 KOKKOS_INLINE_FUNCTION void load_array(B& b, const S& s, int lane) {
-  static_assert(sizeof(B) == sizeof(S) * disc::batch_width, "arrays of the same shape");
+  static_assert(sizeof(B) == sizeof(S) * batch_width, "arrays of the same shape");
   load(batches_of(b), first_of(s), count_of(s), lane);
 }
 template <class B, class S>
 KOKKOS_INLINE_FUNCTION void store_array(const B& b, S& s, int lane) {
-  static_assert(sizeof(B) == sizeof(S) * disc::batch_width, "arrays of the same shape");
+  static_assert(sizeof(B) == sizeof(S) * batch_width, "arrays of the same shape");
   store(batches_of(b), first_of(s), count_of(s), lane);
 }
 
-KOKKOS_INLINE_FUNCTION void load(disc::DgElementRefOf<Batch>& b, const disc::DgElementRef& r, int lane) {
+KOKKOS_INLINE_FUNCTION void load(DgElementRefOf<Batch>& b, const DgElementRef& r, int lane) {
   load_array(b.wj0, r.wj0, lane);
   load_array(b.Jinv, r.Jinv, lane);
-  for (int q = 0; q < disc::num_area_points; ++q) {
+  for (int q = 0; q < num_area_points; ++q) {
     load_array(b.ref[q].gam0, r.ref[q].gam0, lane);
     load_array(b.ref[q].rho0, r.ref[q].rho0, lane);
   }
@@ -74,12 +69,12 @@ KOKKOS_INLINE_FUNCTION void load(disc::DgElementRefOf<Batch>& b, const disc::DgE
   b.project_membrane = r.project_membrane;  // the same on every lane (the caller checks)
 }
 
-KOKKOS_INLINE_FUNCTION void load(disc::EdgeNodesOf<Batch>& b, const disc::EdgeNodes& e, int lane) {
+KOKKOS_INLINE_FUNCTION void load(EdgeNodesOf<Batch>& b, const EdgeNodes& e, int lane) {
   load_array(b.x, e.x, lane);
   load_array(b.t, e.t, lane);
 }
 
-KOKKOS_INLINE_FUNCTION void load(disc::DgElementNodesOf<Batch>& b, const disc::DgElementNodes& e, int lane) {
+KOKKOS_INLINE_FUNCTION void load(DgElementNodesOf<Batch>& b, const DgElementNodes& e, int lane) {
   load_array(b.x, e.x, lane);
   load_array(b.t, e.t, lane);
   for (int k = 0; k < 3; ++k) {
@@ -88,18 +83,19 @@ KOKKOS_INLINE_FUNCTION void load(disc::DgElementNodesOf<Batch>& b, const disc::D
   }
 }
 
-KOKKOS_INLINE_FUNCTION void load(materials::ElasticSectionOf<Batch>& b, const materials::ElasticSection& s, int lane) {
-  b.Dn.set(lane, s.Dn), b.Dm.set(lane, s.Dm), b.Ds.set(lane, s.Ds), b.nu.set(lane, s.nu);
-}
-
-KOKKOS_INLINE_FUNCTION void store(const disc::EdgeForcesOf<Batch>& b, disc::EdgeForces& e, int lane) {
+KOKKOS_INLINE_FUNCTION void store(const EdgeForcesOf<Batch>& b, EdgeForces& e, int lane) {
   store_array(b.f, e.f, lane);
   store_array(b.g, e.g, lane);
 }
 
-KOKKOS_INLINE_FUNCTION void store(const disc::EdgeTractionsOf<Batch>& b, disc::EdgeTractions& e, int lane) {
+KOKKOS_INLINE_FUNCTION void store(const EdgeTractionsOf<Batch>& b, EdgeTractions& e, int lane) {
   store_array(b.at, e.at, lane);
 }
 
-}  // namespace lanes
-}  // namespace shellfrac::solver
+KOKKOS_INLINE_FUNCTION void store(const DgElementForcesOf<Batch>& b, DgElementForces& e, int lane) {
+  store_array(b.f, e.f, lane);
+  store_array(b.g, e.g, lane);
+  for (int k = 0; k < 3; ++k) store(b.neighbour[k], e.neighbour[k], lane);
+}
+
+}  // namespace shellfrac::disc::lanes
