@@ -16,6 +16,7 @@ namespace {
 
 constexpr int nq = disc::num_area_points;
 constexpr int state_channel = 0, flux_channel = 1;
+constexpr LocalId gather_prefetch_distance = 8;  ///< elements ahead whose rows gather asks for (measured: 4-16 alike)
 
 /// The doubles of rows that are structs of doubles only, as the ghost exchange sends them, and how many a row has.
 template <class Row>
@@ -33,6 +34,12 @@ KOKKOS_INLINE_FUNCTION void add_edge_forces(const disc::EdgeForces& in, LocalId 
     for (int c = 0; c < 3; ++c) f(le, disc::edge_node(k, j), c) += in.f[j][c];
   for (int j = 0; j < 2; ++j)
     for (int c = 0; c < 3; ++c) g(le, disc::edge_node(k, j), c) += in.g[j][c];
+}
+
+/// Asks the memory system for the cache lines of a row of edge forces (120 bytes: two or three lines).
+KOKKOS_INLINE_FUNCTION void prefetch(const disc::EdgeForces& row) {
+  const char* p = reinterpret_cast<const char*>(&row);
+  __builtin_prefetch(p), __builtin_prefetch(p + 64), __builtin_prefetch(p + sizeof(row) - 1);
 }
 
 }  // namespace
@@ -304,7 +311,15 @@ void ForceAssembly::gather(ShellState& s) {
   const auto interfaces = kernel_view(model_.dm.interfaces());
   const NeighborViews nb(model_.dm);
   static const std::string label_gather_forces("shellfrac::GatherForces");
+  const LocalId owned = model_.owned;
   Kokkos::parallel_for(label_gather_forces, KernelRange(0, model_.owned), [=](const LocalId le) {
+    // The rows this loop reads are scattered (neighbours, interfaces): ask for those of a later element now, so
+    // that they arrive while this one adds (a hint only: no effect on the results).
+    if (const LocalId ahead = le + gather_prefetch_distance; ahead < owned) {
+      for (int k = 0; k < 3; ++k)
+        if (lifted(ahead)[k]) prefetch(fluxes(nb.element_across(ahead, k)).across[nb.edge_across(ahead, k)]);
+      for (int e = offset(ahead); e < offset(ahead + 1); ++e) prefetch(forces(incident(e).interface).side[incident(e).side]);
+    }
     for (int k = 0; k < 3; ++k)
       if (lifted(le)[k]) add_edge_forces(fluxes(nb.element_across(le, k)).across[nb.edge_across(le, k)], le, k, f, g);
     for (int e = offset(le); e < offset(le + 1); ++e) {
