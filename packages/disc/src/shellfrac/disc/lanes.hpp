@@ -53,6 +53,13 @@ struct Batch {
 KOKKOS_INLINE_FUNCTION Batch select(BatchMask m, Batch a, Batch b) { return Batch(m.m ? a.v : b.v); }
 KOKKOS_INLINE_FUNCTION double select(bool m, double a, double b) { return m ? a : b; }
 
+/// The correctly rounded square root on each lane (the same as std::sqrt of a double).
+KOKKOS_INLINE_FUNCTION Batch sqrt(Batch a) {
+  Batch r;
+  for (int i = 0; i < batch_width; ++i) r.v[i] = __builtin_sqrt(a.v[i]);
+  return r;
+}
+
 /// Whether the flag is set on some lane.
 KOKKOS_INLINE_FUNCTION bool any(const BatchMask& m) {
   bool r = false;

@@ -85,8 +85,9 @@ namespace detail {
 ///   a X^T P X = w_0 + w_1 + w_2 ,  w_0 = a s^2/6 (= a lamP_1 Xh_1^2), w_1 = a d^2/2, w_2 = 2 a c^2,
 ///   b_k = a D lamC_k lamP_k :  b_0 = a D (1+nu)/3 ,  b_1 = b_2 = a D (1-nu).
 /// Index 0..2: membrane modes (a = a_n, D = D_n), 3..5: bending modes (a = a_m, D = D_m).
-KOKKOS_INLINE_FUNCTION void spectral_weights(double a, const double X[3], double w[3]) {
-  const double sum = X[0] + X[1], dif = X[0] - X[1];
+template <class T>
+KOKKOS_INLINE_FUNCTION void spectral_weights(T a, const T X[3], T w[3]) {
+  const T sum = X[0] + X[1], dif = X[0] - X[1];
   w[0] = a * sum * sum / 6.0;
   w[1] = 0.5 * a * dif * dif;
   w[2] = 2.0 * a * X[2] * X[2];
@@ -254,6 +255,23 @@ KOKKOS_INLINE_FUNCTION double equivalent_stress(const PlasticSection& s, const d
   return equivalent_stress(s, N, Q, M);
 }
 
+/// Steps 1-2 of the return map (theory.md §4.3): the elastic trial resultants N_tr = D_n C0 (eps - eps_p),
+/// Q_tr = D_s (gam - gam_p), M_tr = D_m C0 (rho - rho_p), their spectral weights w[0..6] (spectral_weights) and the
+/// trial equivalent stress sigma_eq(N_tr, Q_tr, M_tr) = sqrt(sum w), which the return map compares with
+/// sigma_y(alpha_n). T: double, or one value per element of a batch of elements in lock-step (the element kernel
+/// tests a batch's trial states at once, and runs the return map on its own only where one yields).
+template <class T>
+KOKKOS_INLINE_FUNCTION T trial_equivalent_stress(const ElasticSectionOf<T>& el, T a_n, T a_m, T a_q, const T eps[3],
+                                                 const T gam[2], const T rho[3], const T eps_p[3], const T gam_p[2],
+                                                 const T rho_p[3], T Ntr[3], T Qtr[2], T Mtr[3], T w[7]) {
+  using std::sqrt;
+  elastic_resultants(el, eps, gam, rho, eps_p, gam_p, rho_p, Ntr, Qtr, Mtr);
+  detail::spectral_weights(a_n, Ntr, w);
+  detail::spectral_weights(a_m, Mtr, w + 3);
+  w[6] = a_q * (Qtr[0] * Qtr[0] + Qtr[1] * Qtr[1]);
+  return sqrt(w[0] + w[1] + w[2] + w[3] + w[4] + w[5] + w[6]);
+}
+
 /// Closest-point return map of theory.md §4.3 (backward Euler, associative flow of §4.2, hardening
 /// d alpha = dgam / h, sigma_y = Y0 + H alpha of §4.1).
 ///
@@ -319,21 +337,15 @@ KOKKOS_INLINE_FUNCTION ReturnMapResult resultant_return_map(const PlasticSection
   const double gp_n[2] = {old.gam_p[0], old.gam_p[1]};
   const double alpha_n = old.alpha;
 
-  // 1. Elastic trial state (theory.md §4.3 step 1).
+  // 1.-2. Elastic trial state and yield test (theory.md §4.3 steps 1-2).
   double Ntr[3], Qtr[2], Mtr[3];
-  elastic_resultants(el, eps, gam, rho, ep_n, gp_n, rp_n, Ntr, Qtr, Mtr);
-
-  // 2. Yield test with the spectral weights (same expression as equivalent_stress).
   detail::ReturnMapEquation eq;
   double* const w = eq.w;
   double* const b = eq.b;
-  detail::spectral_weights(s.a_n, Ntr, w);
-  detail::spectral_weights(s.a_m, Mtr, w + 3);
-  w[6] = s.a_q * (Qtr[0] * Qtr[0] + Qtr[1] * Qtr[1]);
+  const double F0 = trial_equivalent_stress(el, s.a_n, s.a_m, s.a_q, eps, gam, rho, ep_n, gp_n, rp_n, Ntr, Qtr, Mtr, w);
   detail::spectral_rates(s.a_n, el.Dn, el.nu, b);
   detail::spectral_rates(s.a_m, el.Dm, el.nu, b + 3);
   b[6] = s.a_q * el.Ds;
-  const double F0 = std::sqrt(w[0] + w[1] + w[2] + w[3] + w[4] + w[5] + w[6]);
   const double sy_n = s.Y0 + s.H * alpha_n;
   if (!(F0 > sy_n)) {
     for (int k = 0; k < 3; ++k) {

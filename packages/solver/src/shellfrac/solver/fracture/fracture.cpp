@@ -10,6 +10,7 @@
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/materials/cohesive_strength.hpp"
+#include "shellfrac/solver/model/prefetch.hpp"
 #include "shellfrac/materials/elastic_resultant.hpp"
 #include "shellfrac/solver/fracture/cohesive_interface.hpp"
 #include "shellfrac/solver/input/mesh_sets.hpp"
@@ -103,6 +104,10 @@ void Fracture::nucleate(long step, double t1, ShellState& s, ShellModel& model,
   const auto& ifs = dm_.interfaces();
   std::vector<LocalId> changed;
   for (std::size_t i = 0; i < ifs.size(); ++i) {
+    if (const std::size_t ahead = i + prefetch_distance; ahead < ifs.size()) {  // scattered rows (a hint)
+      prefetch(edge[ifs[ahead].minus].at[ifs[ahead].minus_edge]);
+      prefetch(edge[ifs[ahead].plus].at[ifs[ahead].plus_edge]);
+    }
     if (!breakable_[i] || s.mode[i] != intact) continue;
     const auto& fc = ifs[i];
     double n[3][3], m[3][3];

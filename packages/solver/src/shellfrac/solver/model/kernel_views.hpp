@@ -7,6 +7,7 @@
 #include <Kokkos_Core.hpp>
 #include <vector>
 
+#include "shellfrac/solver/model/prefetch.hpp"
 #include "shellfrac/solver/model/shell_state.hpp"
 
 namespace shellfrac::solver {

@@ -16,7 +16,6 @@ namespace {
 
 constexpr int nq = disc::num_area_points;
 constexpr int state_channel = 0, flux_channel = 1;
-constexpr LocalId gather_prefetch_distance = 8;  ///< elements ahead whose rows gather asks for (measured: 4-16 alike)
 
 /// The doubles of rows that are structs of doubles only, as the ghost exchange sends them, and how many a row has.
 template <class Row>
@@ -34,12 +33,6 @@ KOKKOS_INLINE_FUNCTION void add_edge_forces(const disc::EdgeForces& in, LocalId 
     for (int c = 0; c < 3; ++c) f(le, disc::edge_node(k, j), c) += in.f[j][c];
   for (int j = 0; j < 2; ++j)
     for (int c = 0; c < 3; ++c) g(le, disc::edge_node(k, j), c) += in.g[j][c];
-}
-
-/// Asks the memory system for the cache lines of a row of edge forces (120 bytes: two or three lines).
-KOKKOS_INLINE_FUNCTION void prefetch(const disc::EdgeForces& row) {
-  const char* p = reinterpret_cast<const char*>(&row);
-  __builtin_prefetch(p), __builtin_prefetch(p + 64), __builtin_prefetch(p + sizeof(row) - 1);
 }
 
 }  // namespace
@@ -165,8 +158,9 @@ struct ElementForcesKernel {
     constexpr int W = disc::batch_width;
     disc::DgElementRefOf<Batch> R;
     disc::DgElementNodesOf<Batch> in;
-    bool all_elastic = true;
-    materials::ElasticSectionOf<Batch> sc;
+    int plastic_lanes = 0;
+    materials::ElasticSectionOf<Batch> sc;  // elastic lanes: the section; plastic: the elastic part of the section
+    Batch a_n, a_m, a_q, Y0, H;             // plastic lanes: the yield function and the hardening
     for (int i = 0; i < W; ++i) {
       const LocalId le = first + i;
       lanes::load(R, refs(le), i);
@@ -174,39 +168,68 @@ struct ElementForcesKernel {
       element_inputs(nb, x, t, lifted(le), le, one);
       lanes::load(in, one, i);
       const int blk = block(le);
-      if (block_is_plastic(blk))
-        all_elastic = false;
-      else
+      if (block_is_plastic(blk)) {
+        const materials::PlasticSection& ps = plastic_section(blk);
+        ++plastic_lanes;
+        load_lane(sc, ps.elastic, i);
+        a_n.set(i, ps.a_n), a_m.set(i, ps.a_m), a_q.set(i, ps.a_q), Y0.set(i, ps.Y0), H.set(i, ps.H);
+      } else {
         load_lane(sc, elastic_section(blk), i);
+      }
     }
     disc::DgElementForcesOf<Batch> out;
     disc::EdgeTractionsOf<Batch> at;
     disc::EdgeTractionsOf<Batch>* at_or_null = edge_tractions ? &at : nullptr;
     double work[W] = {};
     int failed[W] = {};
+    // Each lane's own point law (elastic, or the whole return map of its block).
+    auto lane_by_lane = [&](int q, const Batch eps[3], const Batch gam[2], const Batch rho[3], Batch N[3],
+                            Batch Q[2], Batch M[3]) {
+      Batch w;
+      for (int i = 0; i < W; ++i) {
+        double e[3], gm[2], r[3], n[3], qs[2], m[3];
+        for (int c = 0; c < 3; ++c) e[c] = eps[c][i], r[c] = rho[c][i];
+        for (int c = 0; c < 2; ++c) gm[c] = gam[c][i];
+        w.set(i, point_law(first + i, q, e, gm, r, n, qs, m, work[i], failed[i]));
+        for (int c = 0; c < 3; ++c) N[c].set(i, n[c]), M[c].set(i, m[c]);
+        for (int c = 0; c < 2; ++c) Q[c].set(i, qs[c]);
+      }
+      return w;
+    };
     Batch energy;
-    if (all_elastic) {
+    if (plastic_lanes == 0) {
       auto law = [&sc](int, const Batch eps[3], const Batch gam[2], const Batch rho[3], Batch N[3], Batch Q[2],
                        Batch M[3]) {
         materials::elastic_resultants(sc, eps, gam, rho, N, Q, M);
         return materials::elastic_energy(sc, eps, gam, rho);
       };
       energy = disc::dg_element_forces(R, in, law, out, at_or_null);
-    } else {
+    } else if (plastic_lanes == W) {
+      // The trial states of the batch at once (materials::trial_equivalent_stress); where every lane's is inside
+      // its yield surface, the return map's elastic outcome: the trial resultants, the plastic state unchanged,
+      // no plastic work (added as w j0 * 0, as the return map's result adds it). Otherwise lane by lane.
       auto law = [&](int q, const Batch eps[3], const Batch gam[2], const Batch rho[3], Batch N[3], Batch Q[2],
                      Batch M[3]) {
-        Batch w;
+        Batch eps_p[3] = {0.0, 0.0, 0.0}, gam_p[2] = {0.0, 0.0}, rho_p[3] = {0.0, 0.0, 0.0}, alpha = 0.0;
         for (int i = 0; i < W; ++i) {
-          double e[3], gm[2], r[3], n[3], qs[2], m[3];
-          for (int c = 0; c < 3; ++c) e[c] = eps[c][i], r[c] = rho[c][i];
-          for (int c = 0; c < 2; ++c) gm[c] = gam[c][i];
-          w.set(i, point_law(first + i, q, e, gm, r, n, qs, m, work[i], failed[i]));
-          for (int c = 0; c < 3; ++c) N[c].set(i, n[c]), M[c].set(i, m[c]);
-          for (int c = 0; c < 2; ++c) Q[c].set(i, qs[c]);
+          const materials::PlasticState& st = plastic((first + i) * nq + q);
+          for (int c = 0; c < 3; ++c) eps_p[c].set(i, st.eps_p[c]), rho_p[c].set(i, st.rho_p[c]);
+          for (int c = 0; c < 2; ++c) gam_p[c].set(i, st.gam_p[c]);
+          alpha.set(i, st.alpha);
         }
-        return w;
+        Batch w[materials::detail::num_modes];
+        const Batch F0 =
+            materials::trial_equivalent_stress(sc, a_n, a_m, a_q, eps, gam, rho, eps_p, gam_p, rho_p, N, Q, M, w);
+        const Batch sy_n = Y0 + H * alpha;
+        bool elastic = true;
+        for (int i = 0; i < W; ++i) elastic = elastic && !(F0[i] > sy_n[i]);
+        if (!elastic) return lane_by_lane(q, eps, gam, rho, N, Q, M);
+        for (int i = 0; i < W; ++i) work[i] += refs(first + i).wj0[q] * 0.0;
+        return materials::elastic_energy(sc, eps, gam, rho, eps_p, gam_p, rho_p);
       };
       energy = disc::dg_element_forces(R, in, law, out, at_or_null);
+    } else {
+      energy = disc::dg_element_forces(R, in, lane_by_lane, out, at_or_null);
     }
     for (int i = 0; i < W; ++i) {
       const LocalId le = first + i;
@@ -277,7 +300,13 @@ void ForceAssembly::interface_kernel(ShellState& s, const std::vector<materials:
   const auto offset = kernel_view(std::as_const(s.activation_offset));
   const auto cohesive_energy = kernel_view(s.cohesive_energy), cohesive_dissipation = kernel_view(s.cohesive_dissipation);
   static const std::string label_interface_forces("shellfrac::InterfaceForces");
-  Kokkos::parallel_for(label_interface_forces, KernelRange(0, LocalId(interfaces.extent(0))), [=](const LocalId i) {
+  const LocalId count = LocalId(interfaces.extent(0));
+  Kokkos::parallel_for(label_interface_forces, KernelRange(0, count), [=](const LocalId i) {
+    if (const LocalId ahead = i + prefetch_distance; ahead < count)  // the two sides' rows, scattered (a hint)
+      for (const LocalId le : {interfaces(ahead).minus, interfaces(ahead).plus}) {
+        prefetch_bytes(x.at(le), sizeof(double) * PositionRows::width);
+        prefetch_bytes(t.at(le), sizeof(double) * DirectorRows::width);
+      }
     const auto& fc = interfaces(i);
     disc::EdgeNodes minus, plus;
     edge_nodes_of(x, t, fc.minus, fc.minus_edge, minus);
@@ -315,7 +344,7 @@ void ForceAssembly::gather(ShellState& s) {
   Kokkos::parallel_for(label_gather_forces, KernelRange(0, model_.owned), [=](const LocalId le) {
     // The rows this loop reads are scattered (neighbours, interfaces): ask for those of a later element now, so
     // that they arrive while this one adds (a hint only: no effect on the results).
-    if (const LocalId ahead = le + gather_prefetch_distance; ahead < owned) {
+    if (const LocalId ahead = le + prefetch_distance; ahead < owned) {
       for (int k = 0; k < 3; ++k)
         if (lifted(ahead)[k]) prefetch(fluxes(nb.element_across(ahead, k)).across[nb.edge_across(ahead, k)]);
       for (int e = offset(ahead); e < offset(ahead + 1); ++e) prefetch(forces(incident(e).interface).side[incident(e).side]);
