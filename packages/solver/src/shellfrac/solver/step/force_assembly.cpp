@@ -153,15 +153,17 @@ struct ElementForcesKernel {
     store_plastic(le, work, failed);
   }
 
-  /// The batch_width elements from `first` in lock-step.
-  KOKKOS_INLINE_FUNCTION void batch(LocalId first) const {
-    constexpr int W = disc::batch_width;
-    disc::DgElementRefOf<Batch> R;
-    disc::DgElementNodesOf<Batch> in;
+  /// The sections of a batch's elements, lane by lane.
+  struct BatchSections {
+    materials::ElasticSectionOf<Batch> elastic;  ///< elastic lanes: the section; plastic: its elastic part
+    Batch a_n, a_m, a_q, Y0, H;                  ///< plastic lanes: the yield function and the hardening
+  };
+
+  /// Loads the batch_width elements from `first` into their lanes; returns how many are plastic.
+  KOKKOS_INLINE_FUNCTION int load_batch(LocalId first, disc::DgElementRefOf<Batch>& R,
+                                        disc::DgElementNodesOf<Batch>& in, BatchSections& sc) const {
     int plastic_lanes = 0;
-    materials::ElasticSectionOf<Batch> sc;  // elastic lanes: the section; plastic: the elastic part of the section
-    Batch a_n, a_m, a_q, Y0, H;             // plastic lanes: the yield function and the hardening
-    for (int i = 0; i < W; ++i) {
+    for (int i = 0; i < disc::batch_width; ++i) {
       const LocalId le = first + i;
       lanes::load(R, refs(le), i);
       disc::DgElementNodes one;
@@ -171,12 +173,23 @@ struct ElementForcesKernel {
       if (block_is_plastic(blk)) {
         const materials::PlasticSection& ps = plastic_section(blk);
         ++plastic_lanes;
-        load_lane(sc, ps.elastic, i);
-        a_n.set(i, ps.a_n), a_m.set(i, ps.a_m), a_q.set(i, ps.a_q), Y0.set(i, ps.Y0), H.set(i, ps.H);
+        load_lane(sc.elastic, ps.elastic, i);
+        sc.a_n.set(i, ps.a_n), sc.a_m.set(i, ps.a_m), sc.a_q.set(i, ps.a_q), sc.Y0.set(i, ps.Y0), sc.H.set(i, ps.H);
       } else {
-        load_lane(sc, elastic_section(blk), i);
+        load_lane(sc.elastic, elastic_section(blk), i);
       }
     }
+    return plastic_lanes;
+  }
+
+  /// The batch_width elements from `first` in lock-step.
+  KOKKOS_INLINE_FUNCTION void batch(LocalId first) const {
+    constexpr int W = disc::batch_width;
+    disc::DgElementRefOf<Batch> R;
+    disc::DgElementNodesOf<Batch> in;
+    BatchSections sections;
+    const int plastic_lanes = load_batch(first, R, in, sections);
+    const materials::ElasticSectionOf<Batch>& sc = sections.elastic;
     disc::DgElementForcesOf<Batch> out;
     disc::EdgeTractionsOf<Batch> at;
     disc::EdgeTractionsOf<Batch>* at_or_null = edge_tractions ? &at : nullptr;
@@ -219,8 +232,9 @@ struct ElementForcesKernel {
         }
         Batch w[materials::detail::num_modes];
         const Batch F0 =
-            materials::trial_equivalent_stress(sc, a_n, a_m, a_q, eps, gam, rho, eps_p, gam_p, rho_p, N, Q, M, w);
-        const Batch sy_n = Y0 + H * alpha;
+            materials::trial_equivalent_stress(sc, sections.a_n, sections.a_m, sections.a_q, eps, gam, rho, eps_p,
+                                               gam_p, rho_p, N, Q, M, w);
+        const Batch sy_n = sections.Y0 + sections.H * alpha;
         bool elastic = true;
         for (int i = 0; i < W; ++i) elastic = elastic && !(F0[i] > sy_n[i]);
         if (!elastic) return lane_by_lane(q, eps, gam, rho, N, Q, M);
