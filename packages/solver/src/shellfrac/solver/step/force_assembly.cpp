@@ -83,7 +83,8 @@ KOKKOS_INLINE_FUNCTION void load_lane(materials::ElasticSectionOf<Batch>& b, con
 /// code as one element, on Batch numbers: each element's arithmetic is the same sequence of IEEE operations in a
 /// batch as on its own, so the results do not depend on which elements share a batch (that is, on the
 /// partition). The last, incomplete batch and a batch whose elements differ in their membrane treatment run
-/// element by element; a batch with a plastic element calls the point law lane by lane.
+/// element by element. A batch of plastic elements tests its trial states at once and runs the return map lane by
+/// lane only where a point yields; a batch that mixes elastic and plastic elements calls each lane's own law.
 struct ElementForcesKernel {
   ConstPositionView x;
   ConstDirectorView t;
