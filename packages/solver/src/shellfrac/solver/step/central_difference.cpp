@@ -186,6 +186,8 @@ CentralDifference::CentralDifference(ShellModel& model, Constraints& constraints
       relaxation_(relaxation),
       residual_(std::numeric_limits<double>::quiet_NaN()) {
   director_rate_predicted_.assign(model.owned);
+  x_start_.assign(model.owned);
+  finite_.assign(std::size_t(model.owned), 1);
 }
 
 void CentralDifference::start(ShellState& s) {
@@ -310,7 +312,7 @@ double CentralDifference::relative_residual(const ShellState& s) const {
 }
 
 void CentralDifference::remember_step_start(const ShellState& s) {
-  x_start_.vector().assign(s.x.vector().begin(), s.x.vector().begin() + std::size_t(model_.owned) * position_values);
+  // (The positions at t_n are copied by the predictor, in its pass over them.)
   // The loaded elements' rows only: an element without external forces at t_n adds 0 * dx to its work, and leaving
   // out a term that is +0 or -0 does not change a sum that starts at +0 (the work stays bitwise the same).
   fext_start_slot_.assign(std::size_t(model_.owned), -1);
@@ -331,16 +333,18 @@ void CentralDifference::remember_step_start(const ShellState& s) {
 
 // Predictor (docs/theory.md §7.4 steps 1-2): x^{n+1} = x^n + dt v^n + dt^2/2 a^n, v_pre = v^n + dt/2 a^n; held nodes
 // stay at X, prescribed components follow the exact integral of their velocity program, and no increment crosses
-// a symmetry plane. Directors: Delta T = dt T-dot + dt^2/2 T-ddot, then the exponential map.
+// a symmetry plane. Directors: Delta T = dt T-dot + dt^2/2 T-ddot, then the exponential map. The positions at t_n
+// are kept for the work accounts (x_start_) in the same pass.
 void CentralDifference::predict(ShellState& s, double dt, double t1) {
   evaluate_programs(constraints_, t1, &Constraints::prescribed_displacement, programs_u_);
   const ConstraintViews con(constraints_, programs_u_);
-  const PositionView x = kernel_view(s.x), v = kernel_view(s.v);
+  const PositionView x = kernel_view(s.x), v = kernel_view(s.v), x0 = kernel_view(x_start_);
   const ConstPositionView a = kernel_view(std::as_const(s.a)), X = kernel_view(model_.X);
   static const std::string label_predict_positions("shellfrac::PredictPositions");
   Kokkos::parallel_for(label_predict_positions, KernelRange(0, model_.owned * position_nodes), [=](const LocalId i) {
     double* xi = x.point(i);
     double* vi = v.point(i);
+    for (int c = 0; c < 3; ++c) x0.point(i)[c] = xi[c];
     const double* ai = a.point(i);
     const double* Xi = X.point(i);
     const Motion motion = con.motion(i);
@@ -433,6 +437,8 @@ void CentralDifference::correct(ShellState& s, double dt, double t1) {
   const ConstDirectorView ge0 = kernel_view(std::as_const(gext_start_));
   const ViewOf<Scalars> external_work = kernel_view(s.external_work), reaction_work = kernel_view(s.reaction_work);
   const bool director_loads = loads_.has_director_loads();
+  const ConstPositionView f = kernel_view(std::as_const(s.internal_force));
+  const KernelView<char> finite = kernel_view(finite_);
   static const std::string label_correct("shellfrac::Correct");
   Kokkos::parallel_for(label_correct, KernelRange(0, model_.owned), [=](const LocalId le) {
     double R0[position_values];  // the reactions at t_n, before accelerate overwrites them
@@ -453,12 +459,15 @@ void CentralDifference::correct(ShellState& s, double dt, double t1) {
       for (int c = 0; c < 2; ++c) rate.point(j)[c] = Tp.point(j)[c] + 0.5 * dt * Tdd.point(j)[c];
     double wext = 0, wreact = 0;
     const double* f0 = fe0_slot(le) >= 0 ? fe0.at(fe0_slot(le)) : nullptr;
-    const double *xe = x.at(le), *x0e = x0.at(le), *fee = fe.at(le), *Re = R.at(le);
+    const double *xe = x.at(le), *x0e = x0.at(le), *fee = fe.at(le), *Re = R.at(le), *fie = f.at(le);
+    bool all_finite = true;
     for (int j = 0; j < position_values; ++j) {
       const double dx = xe[j] - x0e[j];
       wext += 0.5 * ((f0 ? f0[j] : 0.0) + fee[j]) * dx;
       wreact += 0.5 * (R0[j] + Re[j]) * dx;
+      all_finite = all_finite && std::isfinite(xe[j]) && std::isfinite(fie[j]);
     }
+    finite(le) = all_finite ? 1 : 0;
     if (director_loads) {  // the work of the edge couples on the directors
       const double *te = t.at(le), *t0e = t0.at(le), *gee = ge.at(le), *ge0e = ge0.at(le);
       for (int j = 0; j < director_values; ++j) wext += 0.5 * (ge0e[j] + gee[j]) * (te[j] - t0e[j]);
@@ -467,14 +476,12 @@ void CentralDifference::correct(ShellState& s, double dt, double t1) {
   });
 }
 
+// Whether the corrector found a non-finite position or internal force (nothing after it in the step moves a shell
+// node: the rotations after it set directors), in the first such element on any rank.
 void CentralDifference::check_finite(const ShellState& s) const {
   GlobalId bad = -1;
   for (LocalId le = 0; le < model_.owned && bad < 0; ++le)
-    for (int i = 0; i < position_values; ++i)
-      if (!std::isfinite(s.x.at(le)[i]) || !std::isfinite(s.internal_force.at(le)[i])) {
-        bad = model_.dm.element_gid(le);
-        break;
-      }
+    if (!finite_[std::size_t(le)]) bad = model_.dm.element_gid(le);
   const double worst = parallel::max(bad >= 0 ? double(bad) : -1.0, model_.dm.comm());
   if (worst >= 0) {
     std::ostringstream os;

@@ -77,10 +77,11 @@ class CentralDifference {
   // At t_n, for the work accounts: the positions, and the external forces of the elements loaded at t_n only
   // (fext_start_slot_[le]: the row of owned element le in fext_start_, -1 if its forces were all zero). The
   // reactions at t_n need no copy: the corrector reads them before it overwrites them.
-  PositionRows x_start_, fext_start_;
+  PositionRows x_start_, fext_start_;  // x_start_: written by the predictor before it moves a node
   std::vector<int> fext_start_slot_;
   DirectorRows t_start_, gext_start_;                   // directors and director loads at t_n (edge moments)
   RateRows director_rate_predicted_;  // T-dot + dt/2 T-ddot (eq. 48)
+  std::vector<char> finite_;           // per owned element: its positions and forces finite (set by the corrector)
   std::vector<double> programs_u_, programs_v_, programs_a_;  // the conditions' programs at the kernel's time
 };
 
