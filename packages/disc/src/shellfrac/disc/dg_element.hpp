@@ -279,7 +279,7 @@ struct DgElementNodesOf {
   T x[6][3];                  ///< current positions of the P2 nodes
   T t[3][3];                  ///< current directors of the P1 (vertex) nodes
   MaskOf<T> lift[3];          ///< edge k is an intact interface with a single neighbour (its jump is lifted)
-  EdgeNodesOf<T> neighbour[3];///< across edge k: the neighbour's edge nodes (read only where lift[k])
+  EdgeNodesOf<T> neighbour[3];  ///< across edge k: the neighbour's edge nodes (read only where lift[k])
 };
 using DgElementNodes = DgElementNodesOf<double>;
 

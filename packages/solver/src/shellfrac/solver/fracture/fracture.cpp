@@ -10,13 +10,13 @@
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/materials/cohesive_strength.hpp"
-#include "shellfrac/solver/model/prefetch.hpp"
 #include "shellfrac/materials/elastic_resultant.hpp"
 #include "shellfrac/solver/fracture/cohesive_interface.hpp"
 #include "shellfrac/solver/input/mesh_sets.hpp"
 #include "shellfrac/solver/model/element_inputs.hpp"
 #include "shellfrac/solver/model/element_strains.hpp"
 #include "shellfrac/solver/model/ghost_exchange.hpp"
+#include "shellfrac/solver/model/prefetch.hpp"
 #include "shellfrac/solver/model/shell_model.hpp"
 
 namespace shellfrac::solver {

@@ -362,7 +362,8 @@ void ForceAssembly::gather(ShellState& s) {
     if (const LocalId ahead = le + prefetch_distance; ahead < owned) {
       for (int k = 0; k < 3; ++k)
         if (lifted(ahead)[k]) prefetch(fluxes(nb.element_across(ahead, k)).across[nb.edge_across(ahead, k)]);
-      for (int e = offset(ahead); e < offset(ahead + 1); ++e) prefetch(forces(incident(e).interface).side[incident(e).side]);
+      for (int e = offset(ahead); e < offset(ahead + 1); ++e)
+        prefetch(forces(incident(e).interface).side[incident(e).side]);
     }
     for (int k = 0; k < 3; ++k)
       if (lifted(le)[k]) add_edge_forces(fluxes(nb.element_across(le, k)).across[nb.edge_across(le, k)], le, k, f, g);
