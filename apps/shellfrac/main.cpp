@@ -59,8 +59,8 @@ const char* usage =
     "results, then stops with exit code 4 (restart with --restart); during the set-up it stops at once, nothing\n"
     "written. Under mpirun send SIGUSR2 to mpirun (it kills the ranks 1 s after forwarding a SIGTERM).\n"
     "Exit codes: 0 done, 1 input error, 2 usage error, 3 numerical blow-up or internal error, 4 stopped by\n"
-    "SIGTERM or SIGUSR2, 5 static equilibrium (Static Relaxation) not reached by End Time, 6 a result file could not be\n"
-    "written (disk full?).\n";
+    "SIGTERM or SIGUSR2, 5 static equilibrium (Static Relaxation) not reached by End Time or the relaxation stalled,\n"
+    "6 a result file could not be written (disk full?).\n";
 
 /// The run's plan on rank 0: mesh, partition, time step, mass scaling, regions, then any warnings.
 void print_summary(const shellfrac::solver::Simulation& sim, const std::string& deck) {
@@ -187,9 +187,21 @@ int run(int argc, char** argv) {
     if (out.stopped_by_signal)
       std::cout << "  stopped by " << out.stop_signal << " at step " << std::max(out.restart_step, 0L) + out.steps << "; continue with --restart "
                 << out.checkpoint << "\n";
-    if (out.relaxed)
-      std::cout << "  static equilibrium reached after " << out.steps << " steps: relative residual "
+    const long run_steps = std::max(out.restart_step, 0L) + out.steps;  // the run's, across restarts
+    if (out.relaxed && out.at_floor)
+      std::cout << "  static equilibrium reached after " << run_steps << " steps at the residual's round-off floor: "
+                << "the relative residual stopped falling at " << out.best_residual << " (above 'Relaxation "
+                << "Tolerance': the load is small against the stiffness) while the displacement changed by "
+                << out.displacement_change << " of itself over 100 kinetic-energy peaks\n";
+    else if (out.relaxed)
+      std::cout << "  static equilibrium reached after " << run_steps << " steps: relative residual "
                 << out.residual << "\n";
+    else if (out.stalled)
+      std::cerr << "shellfrac: warning: the static relaxation stalled at step " << run_steps
+                << ": its relative residual has not fallen below 0.99 of its smallest value " << out.best_residual
+                << " over 100 kinetic-energy peaks while the displacement still changed by "
+                << out.displacement_change << " of itself (no equilibrium: a mechanism, an instability, or a "
+                << "tolerance below what the motion can settle to); the results are written; exit code 5\n";
     else if (out.static_relaxation && !out.stopped_by_signal)
       std::cerr << "shellfrac: warning: the static equilibrium was not reached by End Time (relative residual "
                 << out.residual << " above 'Relaxation Tolerance'); the results are written; exit code 5\n";

@@ -77,6 +77,23 @@ BASE = """<ParameterList name="shellfrac">
 """
 
 
+# The base strip as a static problem (Reliability.relaxation_deck).
+RELAXATION_BASE = (BASE.replace('value="4.0"', 'value="1.0"').replace('value="0.01"', 'value="0.05"')
+                   .replace('<Parameter name="End Time" type="double" value="2e-3"/>',
+                            '<Parameter name="End Time" type="double" value="END_TIME"/>'
+                            '<Parameter name="Static Relaxation" type="bool" value="true"/>'
+                            '<Parameter name="Relaxation Tolerance" type="double" value="TOLERANCE"/>')
+                   .replace('<Parameter name="Probes" type="Array(string)" value="{x_max}"/>',
+                            '<Parameter name="Probes" type="Array(string)" value="{x_max}"/>'
+                            '<Parameter name="Progress Interval" type="double" value="0.02"/>'))
+RELAXATION_BASE = re.sub(r'<ParameterList name="Initial Conditions">.*?</ParameterList>\s*</ParameterList>',
+                         '<ParameterList name="Loads"><ParameterList name="tip"><Parameter name="Type" type="string" '
+                         'value="Line Load"/><Parameter name="Side Set" type="string" value="x_max"/><Parameter '
+                         'name="Force Per Length" type="Array(double)" value="{0.0, 0.0, 1.0}"/></ParameterList>'
+                         '</ParameterList>', RELAXATION_BASE, flags=re.S)
+RELAXATION_HALF_TIME = 0.01  # End Time of a relaxation stopped before its equilibrium [s]
+
+
 def run(args, cwd, np=None, timeout=120):
     return launch([SHELLFRAC, "--quiet"] + args, cwd, np, timeout)
 
@@ -346,6 +363,69 @@ class Reliability(DeckTest):
                                    r"Refinements\); 1 rank\(s\) of 1 on this node would need about [0-9.e+]+ GB, but the "
                                    r"node has [0-9.]+ GB available")
         self.assertLess(time.time() - start, 30)
+
+    # --- static relaxation --------------------------------------------------------------------------------
+
+    def relaxation_deck(self, tolerance, end_time=100.0):
+        """The strip as a static problem (theory.md §7.5): 1 m x 0.5 m x 50 mm, clamped at x_min, no kick, a dead
+        transverse Line Load of 1 N/m at x_max (tip deflection 4.2e-7 m: linear), checkpoints every 100 steps."""
+        text = RELAXATION_BASE.replace("TOLERANCE", repr(tolerance)).replace("END_TIME", repr(end_time))
+        return self.deck(text=text)
+
+    def test_a_tolerance_below_the_round_off_floor_stops_at_the_floor_not_at_end_time(self):
+        r = launch([SHELLFRAC, self.relaxation_deck(1e-15)], self.dir, None, 120)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        m = re.search(r"static equilibrium reached after (\d+) steps at the residual's round-off floor: the relative "
+                      r"residual stopped falling at (\S+) \(above 'Relaxation Tolerance'.* while the displacement "
+                      r"changed by (\S+) of itself over 100 kinetic-energy peaks", r.stdout)
+        self.assertIsNotNone(m, r.stdout)
+        # The residual's floor: 5e-6 to 2e-5 here (it is not monotone from peak to peak); the displacement steady
+        # to ten times it (theory.md §7.5).
+        self.assertLess(float(m.group(2)), 1e-4)
+        self.assertLessEqual(float(m.group(3)), 10 * float(m.group(2)))
+        steps = int(m.group(1))
+        self.assertLess(steps, 300000)  # End Time 100 s would be about 2e7 steps
+        rows = open(self.path("base_history.csv")).read().splitlines()
+        self.assertEqual(int(rows[-1].split(",")[0]), steps)
+
+    def tip_deflection(self):
+        rows = open(self.path("base_history.csv")).read().splitlines()
+        return float(rows[-1].split(",")[rows[0].split(",").index("x_max_displ_z")])
+
+    def test_a_small_load_settles_at_the_residual_s_round_off_floor_and_is_accepted(self):
+        # Tolerance 1e-5 is reached by the residual (its floor here is about 5e-6); 1e-6 is not, but the
+        # displacement settles: the run is accepted at the floor with the same answer.
+        r = run([self.relaxation_deck(1e-5)], self.dir)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        w = self.tip_deflection()
+        r = launch([SHELLFRAC, self.relaxation_deck(1e-6)], self.dir, None, 120)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertRegex(r.stdout, r"static equilibrium reached after \d+ steps at the residual's round-off floor: the "
+                                   r"relative residual stopped falling at \S+ \(above 'Relaxation Tolerance'")
+        self.assertAlmostEqual(self.tip_deflection(), w, delta=1e-4 * w)
+
+    def test_the_progress_line_shows_the_residual_and_a_restart_counts_the_run_s_steps(self):
+        r = launch([SHELLFRAC, self.relaxation_deck(1e-5)], self.dir, None, 120)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertRegex(r.stdout, r"step \d+ .* residual \d\.\d\de[-+]\d+")
+        m = re.search(r"static equilibrium reached after (\d+) steps", r.stdout)
+        self.assertIsNotNone(m, r.stdout)
+        continuous = int(m.group(1))
+        last_row = open(self.path("base_history.csv")).read().splitlines()[-1]
+        # The same run stopped by End Time before it reached the equilibrium, then continued from its checkpoint.
+        for f in os.listdir(self.dir):
+            if f.startswith("base_checkpoint"):
+                os.remove(self.path(f))
+        self.relaxation_deck(1e-5, end_time=RELAXATION_HALF_TIME)
+        r = run(["base.xml"], self.dir)
+        self.assertEqual(r.returncode, 5, r.stderr)
+        ck = max((f for f in os.listdir(self.dir) if f.startswith("base_checkpoint_step")),
+                 key=lambda f: int(re.search(r"step(\d+)", f).group(1)))
+        self.relaxation_deck(1e-5)
+        r = launch([SHELLFRAC, "base.xml", "--restart", ck], self.dir, None, 120)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("static equilibrium reached after %d steps" % continuous, r.stdout)
+        self.assertEqual(open(self.path("base_history.csv")).read().splitlines()[-1], last_row)  # bitwise
 
     # --- signals ------------------------------------------------------------------------------------------
 

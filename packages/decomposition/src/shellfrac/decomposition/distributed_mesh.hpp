@@ -87,6 +87,9 @@ class DistributedMesh {
   GlobalId dg_node_gid(LocalId le, int a) const { return element_gid_[le] * npe_ + a; }
   /// Reference director (theory.md §1.5: averaged unit normal at the mesh vertex) at vertex a (0..2) of le.
   const Vec3& reference_director(LocalId le, int a) const { return directors_[le * 3 + a]; }
+  /// Replaces that reference director (a unit vector; the same on every copy of the vertex that the caller moves:
+  /// solver/model/symmetry_directors.hpp).
+  void set_reference_director(LocalId le, int a, const Vec3& t) { directors_[le * 3 + a] = t; }
   /// Neighbour across local edge k of overlap element le: local overlap id (-1 if none or not in overlap)
   /// and its local edge.
   LocalId neighbor(LocalId le, int k) const { return neighbor_[le * 3 + k]; }

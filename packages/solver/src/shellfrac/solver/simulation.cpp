@@ -426,13 +426,13 @@ RunSummary Simulation::run() {
     frame_written = frames.due(dyn.time(), dyn.time_step());
     if (frame_written) out.write_frame(), frames.pass(dyn.time(), dyn.time_step());
     const auto due = events.after_step(dyn.step_count());
-    if (due.progress) progress.print(dyn.record(), e0);
+    if (due.progress) progress.print(dyn.record(), e0, dyn.relaxation_residual());
     if (due.checkpoint != CheckpointAction::none) write_checkpoint();
     if (due.checkpoint == CheckpointAction::write_and_stop) {
       summary_.stopped_by_signal = true, summary_.stop_signal = signal_name(due.signal);
       break;
     }
-    if (dyn.relaxed()) break;  // the static state (Static Relaxation)
+    if (dyn.relaxed() || dyn.relaxation_stalled()) break;  // the static state, or no way to it (Static Relaxation)
   }
   if (!history_written) out.write_history();
   if (!frame_written) out.write_frame();
@@ -469,6 +469,8 @@ void Simulation::complete_summary(RunOutputs& out, const std::string& last_check
   const auto& dyn = *model_.dynamics;
   summary_.static_relaxation = deck_.time.static_relaxation;
   summary_.relaxed = dyn.relaxed(), summary_.residual = dyn.relaxation_residual();
+  summary_.stalled = dyn.relaxation_stalled(), summary_.best_residual = dyn.best_relaxation_residual();
+  summary_.at_floor = dyn.relaxed_at_floor(), summary_.displacement_change = dyn.relaxation_displacement_change();
   record_peak_memory();
   summary_.steps = dyn.step_count() - std::max(summary_.restart_step, 0L);
   summary_.wall_seconds = wall_seconds;

@@ -39,6 +39,10 @@ struct RunSummary {
   bool static_relaxation = false;  ///< the deck asked for the static state (Static Relaxation)
   bool relaxed = false;            ///< ... and the run reached it before End Time
   double residual = 0;             ///< the last relative residual of the static relaxation
+  bool stalled = false;            ///< the residual stopped falling while the displacement still changed
+  bool at_floor = false;           ///< relaxed: the residual stopped falling at a settled displacement
+  double displacement_change = 0;  ///< ... the relative change of the displacement norm over those peaks
+  double best_residual = 0;        ///< the smallest residual at a kinetic-energy peak
   double peak_memory_max = 0;      ///< the largest peak resident memory of a rank [bytes] (at the end of run())
   int peak_memory_rank = 0;        ///< ... and that rank
   double peak_memory_sum = 0;      ///< the peak resident memories of all ranks added [bytes]

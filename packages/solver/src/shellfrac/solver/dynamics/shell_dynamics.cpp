@@ -155,6 +155,12 @@ double ShellDynamics::peak_plastic_strain() const {
 const materials::StrengthSummary& ShellDynamics::strengths() const { return impl_->fracture.strengths(); }
 bool ShellDynamics::relaxed() const { return impl_->integrator.relaxed(); }
 double ShellDynamics::relaxation_residual() const { return impl_->integrator.relaxation_residual(); }
+bool ShellDynamics::relaxation_stalled() const { return impl_->integrator.relaxation_stalled(); }
+bool ShellDynamics::relaxed_at_floor() const { return impl_->integrator.relaxed_at_floor(); }
+double ShellDynamics::best_relaxation_residual() const { return impl_->integrator.best_relaxation_residual(); }
+double ShellDynamics::relaxation_displacement_change() const {
+  return impl_->integrator.relaxation_displacement_change();
+}
 const ShellState& ShellDynamics::state() const { return impl_->state; }
 const ShellModel& ShellDynamics::model() const { return impl_->model; }
 

@@ -115,6 +115,12 @@ class ShellDynamics {
   /// before the loads and prescribed motions reached their final values).
   bool relaxed() const;
   double relaxation_residual() const;
+  /// Static relaxation (theory.md §7.5): whether the residual stopped falling while the displacement still changed,
+  /// whether it stopped falling at a settled displacement (relaxed() too), and its smallest value.
+  bool relaxation_stalled() const;
+  bool relaxed_at_floor() const;
+  double best_relaxation_residual() const;
+  double relaxation_displacement_change() const;
   /// One row per fragment (Fracture::fragment_table). Collective.
   std::vector<std::vector<double>> fragment_table() const;
   /// The crack log since the last call (Fracture::crack_events). Collective.

@@ -5,6 +5,7 @@
 /// restore and the memory count all iterate that list, so they cannot drift apart.
 #include <array>
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -102,12 +103,29 @@ struct RigidBodyState {
   Vec3 x{0, 0, 0}, v{0, 0, 0}, a{0, 0, 0}, force{0, 0, 0};
 };
 
+/// Where a static relaxation stands (theory.md §7.5), global scalars the same on every rank, checkpointed so that
+/// a restart continues it bitwise.
+struct RelaxationProgress {
+  double kinetic_before = 0;  ///< the global kinetic energy after the previous step
+  double best_residual = std::numeric_limits<double>::infinity();  ///< the smallest residual at a kinetic-energy peak
+  double peaks_since_best = 0;  ///< peaks since the residual last fell below stall_drop of the best
+  double u_low = 0, u_high = 0;  ///< the smallest and largest displacement norm at those peaks
+  /// Calls visit(key, value) for each scalar with its checkpoint key.
+  template <class Self, class Visit>
+  static void visit(Self& r, Visit&& visit) {
+    visit("relaxation kinetic before", r.kinetic_before), visit("relaxation best residual", r.best_residual);
+    visit("relaxation peaks since best", r.peaks_since_best);
+    visit("relaxation displacement low", r.u_low), visit("relaxation displacement high", r.u_high);
+  }
+};
+
 /// Everything that evolves in time. Positions and directors cover the overlap (owned elements, then the ghost
 /// layer, whose rows the ghost exchange fills); the other element rows cover the owned elements; interface rows
 /// cover every local interface.
 struct ShellState {
   double time = 0;
   long step = 0;
+  RelaxationProgress relaxation;
   // Element rows.
   PositionRows x;                ///< current positions (overlap)
   DirectorRows t;                ///< current directors (overlap)

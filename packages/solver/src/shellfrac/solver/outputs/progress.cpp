@@ -50,7 +50,7 @@ bool ProgressReport::due() const {
   return interval_ > 0 && std::chrono::duration<double>(Clock::now() - last_).count() >= interval_;
 }
 
-void ProgressReport::print(const StepRecord& r, double e0) {
+void ProgressReport::print(const StepRecord& r, double e0, double residual) {
   last_ = Clock::now();
   if (!out_) return;
   const double elapsed = std::chrono::duration<double>(last_ - start_).count();
@@ -66,6 +66,10 @@ void ProgressReport::print(const StepRecord& r, double e0) {
                 r.step, r.time, r.dt, done, rate, clock_time(elapsed).c_str(),
                 clock_time(rate > 0 ? remaining / rate : NAN).c_str(), put_in > 0 ? std::abs(error) / put_in : 0.0);
   *out_ << buf;
+  if (!std::isnan(residual)) {
+    std::snprintf(buf, sizeof buf, "  residual %.2e", residual);
+    *out_ << buf;
+  }
   if (show_edges_) *out_ << "  edges " << r.cohesive_edges << " activated, " << r.separated_edges << " separated";
   *out_ << "\n" << std::flush;
 }

@@ -6,6 +6,7 @@
 /// time to the end, the energy balance error relative to the energy put in, and the activated and separated
 /// edges.
 #include <chrono>
+#include <cmath>
 #include <iosfwd>
 
 namespace shellfrac::solver {
@@ -24,7 +25,8 @@ class ProgressReport {
   /// Whether this rank's clock says a line is due (the ranks agree on it by a reduction).
   bool due() const;
   /// Prints the line for the record `r` (e0: the initial energy of the balance) and starts the next interval.
-  void print(const StepRecord& r, double e0);
+  /// `residual`: the static relaxation's relative residual (theory.md §7.5), shown unless NaN.
+  void print(const StepRecord& r, double e0, double residual = NAN);
 
  private:
   using Clock = std::chrono::steady_clock;

@@ -65,6 +65,7 @@ io::CheckpointData state_checkpoint(const ShellState& s, const decomposition::Di
   d.scalars["time"] = s.time, d.scalars["step"] = double(s.step);
   d.scalars["num_elements"] = double(dm.num_global_elements());
   for (const auto& b : s.bodies) visit_body_scalars(b, [&](const std::string& key, double v) { d.scalars[key] = v; });
+  RelaxationProgress::visit(s.relaxation, [&](const std::string& key, double v) { d.scalars[key] = v; });
   const auto* mesh = &dm;
   const auto element_ids = [mesh] {
     std::vector<GlobalId> ids(std::size_t(mesh->num_owned()));
@@ -147,6 +148,11 @@ void StateRestore::header(const io::CheckpointData& d) {
                           file_ << ": the checkpoint's time " << time << " at step " << step << " is not finite and "
                                 << "positive after step 0 (0 at step 0): the file was not written by a shellfrac run");
   s_.time = time, s_.step = long(step);
+  // A checkpoint from before static relaxations were checkpointed starts its relaxation's tracking anew.
+  RelaxationProgress::visit(s_.relaxation, [&](const std::string& key, double& v) {
+    const auto it = d.scalars.find(key);
+    if (it != d.scalars.end()) v = it->second;
+  });
   for (auto& b : s_.bodies)
     visit_body_scalars(b, [&](const std::string& key, double& v) {
       v = scalar(key.c_str());

@@ -16,6 +16,7 @@
 #include "shellfrac/solver/dynamics/shell_dynamics.hpp"
 #include "shellfrac/solver/input/deck.hpp"
 #include "shellfrac/solver/input/units.hpp"
+#include "shellfrac/solver/model/symmetry_directors.hpp"
 #include "shellfrac/solver/setup/stop_signals.hpp"
 
 namespace shellfrac::solver {
@@ -148,6 +149,7 @@ RunModel build_run_model(const Deck& deck, MPI_Comm comm) {
     const auto part = decomposition::partition_elements(*r.mesh, topology, parallel::size(comm), *deck.partition, comm);
     lap();
     r.distributed = std::make_unique<decomposition::DistributedMesh>(*r.mesh, topology, part, comm);
+    hold_reference_directors_in_symmetry_planes(deck, *r.mesh, *r.distributed);
     lap();
   }
   r.dynamics = std::make_unique<ShellDynamics>(*r.mesh, *r.distributed, deck);

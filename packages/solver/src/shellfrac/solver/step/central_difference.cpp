@@ -184,7 +184,8 @@ CentralDifference::CentralDifference(ShellModel& model, Constraints& constraints
       times_(times),
       alpha_(mass_damping),
       relaxation_(relaxation),
-      residual_(std::numeric_limits<double>::quiet_NaN()) {
+      residual_(std::numeric_limits<double>::quiet_NaN()),
+      best_residual_(std::numeric_limits<double>::infinity()) {
   director_rate_predicted_.assign(model.owned);
   x_start_.assign(model.owned);
   finite_.assign(std::size_t(model.owned), 1);
@@ -249,15 +250,54 @@ void CentralDifference::relax(ShellState& s) {
   for (LocalId le = 0; le < model_.owned; ++le) kinetic.add(model_.element_kinetic(s, le));
   kinetic.allreduce(model_.dm.comm());
   const double k = kinetic.value();
-  if (k < kinetic_before_) {
+  RelaxationProgress& p = s.relaxation;
+  const bool peak = k < p.kinetic_before;
+  if (peak) {
     reset_free_velocities(s);
-    kinetic_before_ = 0;
+    p.kinetic_before = 0;
   } else {
-    kinetic_before_ = k;
+    p.kinetic_before = k;
   }
   if (s.time < relaxation_.start) return;
   residual_ = relative_residual(s);
   relaxed_ = residual_ <= relaxation_.tolerance;
+  if (peak && !relaxed_) watch_for_stall(s);
+}
+
+// At a kinetic-energy peak (theory.md §7.5): the residual has stopped falling when it has not fallen below
+// stall_drop of its smallest value for stall_peaks peaks. Then either the displacement has settled too (its norm
+// changed, relative, by at most the tolerance or settled_factor x the smallest residual over those peaks: steady to
+// the level of the round-off in the forces): the equilibrium at the residual's round-off floor,
+// which a small load against a stiff shell puts above the tolerance; or it has not: the relaxation has stalled (no
+// equilibrium: a mechanism, an instability). Exact sums, so the same decision on the same step on every rank count.
+void CentralDifference::watch_for_stall(ShellState& s) {
+  const double u = displacement_norm(s);
+  RelaxationProgress& p = s.relaxation;
+  if (residual_ < relaxation_.stall_drop * p.best_residual) {
+    best_residual_ = p.best_residual = residual_;
+    p.peaks_since_best = 0;
+    p.u_low = p.u_high = u;
+    return;
+  }
+  best_residual_ = p.best_residual = std::min(p.best_residual, residual_);
+  p.u_low = std::min(p.u_low, u), p.u_high = std::max(p.u_high, u);
+  if (++p.peaks_since_best < relaxation_.stall_peaks) return;
+  displacement_change_ = (p.u_high - p.u_low) / p.u_high;
+  at_floor_ = displacement_change_ <= std::max(relaxation_.tolerance, relaxation_.settled_factor * p.best_residual);
+  relaxed_ = at_floor_;
+  stalled_ = !at_floor_;
+}
+
+// |x - X| over the owned position nodes.
+double CentralDifference::displacement_norm(const ShellState& s) const {
+  ExactSum u2;
+  for (LocalId le = 0; le < model_.owned; ++le)
+    for (int A = 0; A < position_nodes; ++A) {
+      const double *x = s.x.at(le, A), *X = model_.X.at(le, A);
+      for (int c = 0; c < 3; ++c) u2.add((x[c] - X[c]) * (x[c] - X[c]));
+    }
+  u2.allreduce(model_.dm.comm());
+  return std::sqrt(u2.value());
 }
 
 void CentralDifference::reset_free_velocities(ShellState& s) const {

@@ -27,6 +27,13 @@ class CentralDifference {
   struct Relaxation {
     bool enabled = false;
     double tolerance = 1e-6, start = 0;
+    /// The residual has stopped falling when it has not fallen below stall_drop of its smallest value over this
+    /// many kinetic-energy peaks (theory.md §7.5).
+    int stall_peaks = 100;
+    double stall_drop = 0.99;
+    /// ... and the displacement has settled when its norm changed over those peaks by at most the tolerance or
+    /// this factor times the smallest residual, relative.
+    double settled_factor = 10;
   };
   /// `mass_damping`: alpha of the damping force alpha m v (dynamic relaxation; 0 = none).
   /// `walls`, `bodies`: the rigid walls and bodies, whose contact forces join the loads' (docs/theory.md §12);
@@ -46,6 +53,14 @@ class CentralDifference {
   /// (NaN before the first test).
   bool relaxed() const { return relaxed_; }
   double relaxation_residual() const { return residual_; }
+  /// Static relaxation (theory.md §7.5): whether the residual stopped falling while the displacement still changed
+  /// (stalled: no equilibrium), whether it stopped falling at a settled displacement (relaxed() too: the
+  /// equilibrium at the residual's round-off floor), and the smallest residual.
+  bool relaxation_stalled() const { return stalled_; }
+  bool relaxed_at_floor() const { return at_floor_; }
+  double best_relaxation_residual() const { return best_residual_; }
+  /// The change of the displacement norm over the peaks since the residual last fell, relative to it.
+  double relaxation_displacement_change() const { return displacement_change_; }
 
  private:
   void remember_step_start(const ShellState& s);
@@ -57,6 +72,8 @@ class CentralDifference {
   /// s.external_force, s.external_director_force, the bodies' forces and accelerations. Collective.
   void external_forces(double t, ShellState& s);
   void relax(ShellState& s);
+  void watch_for_stall(ShellState& s);
+  double displacement_norm(const ShellState& s) const;
   void reset_free_velocities(ShellState& s) const;
   double relative_residual(const ShellState& s) const;
 
@@ -71,9 +88,10 @@ class CentralDifference {
   PhaseTimes& times_;
   double alpha_;
   Relaxation relaxation_;
-  double kinetic_before_ = 0;  // the global kinetic energy after the previous step (static relaxation)
+  // Static relaxation: the outcome of the last test (where the relaxation stands is in ShellState::relaxation).
   bool relaxed_ = false;
-  double residual_;
+  double residual_, best_residual_, displacement_change_ = 0;
+  bool stalled_ = false, at_floor_ = false;
   // At t_n, for the work accounts: the positions, and the external forces of the elements loaded at t_n only
   // (fext_start_slot_[le]: the row of owned element le in fext_start_, -1 if its forces were all zero). The
   // reactions at t_n need no copy: the corrector reads them before it overwrites them.
