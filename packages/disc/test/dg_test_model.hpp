@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "shellfrac/disc/dg_element.hpp"
+#include "shellfrac/disc/dg_interface.hpp"
 #include "shellfrac/materials/elastic_resultant.hpp"
 #include "shellfrac/mesh/edge_topology.hpp"
 #include "shellfrac/mesh/generators.hpp"

@@ -22,7 +22,7 @@ using shellfrac::disc::test::Model;
 
 namespace {
 
-Model perturbed_panel(bool project_membrane) {
+Model perturbed_panel(const StrainTreatment& strains) {
   auto m = mesh::make_cylindrical_panel(1.0, 1.2, 1.0, 4, 3, mesh::DiagonalPattern::Alternating);
   mesh::promote_to_p2(m);
   Model model(std::move(m));
@@ -30,7 +30,10 @@ Model perturbed_panel(bool project_membrane) {
   std::uniform_real_distribution<double> u(-0.02, 0.02);
   for (double& v : model.x) v += u(rng);  // every DG copy on its own: jumps on every interface
   for (double& v : model.t) v += u(rng);
-  for (auto& r : model.refs) r.project_membrane = project_membrane;
+  for (std::size_t e = 0; e < model.refs.size(); ++e) {
+    model.refs[e].strains = strains;  // the membrane remainder differs between lanes
+    model.refs[e].membrane_remainder = strains.membrane == StrainSpace::p0 ? 0.2 + 0.1 * double(e % 3) : 0.0;
+  }
   return model;
 }
 
@@ -89,8 +92,8 @@ bool same_bits(const S& a, const S& b) {
   return std::memcmp(&a, &b, sizeof(S)) == 0;
 }
 
-void expect_batches_bitwise(bool project_membrane) {
-  const Model model = perturbed_panel(project_membrane);
+void expect_batches_bitwise(const StrainTreatment& strains) {
+  const Model model = perturbed_panel(strains);
   const GlobalId ne = model.mesh.num_elements();
   ASSERT_GE(ne, 4 * batch_width);
   int unlifted = 0;
@@ -124,6 +127,10 @@ void expect_batches_bitwise(bool project_membrane) {
 
 }  // namespace
 
-TEST(BatchedElement, BitwiseTheSameAsEachElementOnItsOwn) { expect_batches_bitwise(false); }
+TEST(BatchedElement, BitwiseTheSameAsEachElementOnItsOwn) { expect_batches_bitwise({}); }
 
-TEST(BatchedElement, BitwiseTheSameWithTheMembraneProjection) { expect_batches_bitwise(true); }
+TEST(BatchedElement, BitwiseTheSameWithTheMembraneProjection) { expect_batches_bitwise({StrainSpace::p1}); }
+
+TEST(BatchedElement, BitwiseTheSameWithStabilizedMeanMembraneAndProjectedShear) {
+  expect_batches_bitwise({StrainSpace::p0, StrainSpace::p1});
+}

@@ -8,7 +8,9 @@
 //    dissipation (measured 0.02 %) at every history row, the level the issue sets for fast fracture;
 //  * the paper's rigid law (Activation Opening 0): the error reaches more than 5 % of the cohesive dissipation
 //    (measured 11.5 %): the defect the default removes, kept here so that a regression shows;
-//  * both: at least 40 separated edges at the end (measured 49 and 48), so the check is made through separation.
+//  * both: at least 30 separated edges at the end, so the check is made through separation (measured 37 and 39
+//    with the default membrane strains; 49 and 48 with Point Values, whose coarse curved elements, a sagitta of
+//    1.4 thicknesses, are stiffer in bending: theory.md §5.4).
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -79,12 +81,12 @@ BalanceSummary run_torn_cylinder(const std::string& name, double activation_open
 
 TEST(FastFracture, BalanceClosesWithTheDefaultActivationOpening) {
   const BalanceSummary s = run_torn_cylinder("fast_fracture_default", -1);
-  EXPECT_GE(s.separated, 40);
+  EXPECT_GE(s.separated, 30);
   EXPECT_LE(s.worst_error, 0.01 * s.dissipation);
 }
 
 TEST(FastFracture, TheRigidLawLosesTheBalance) {
   const BalanceSummary s = run_torn_cylinder("fast_fracture_rigid", 0.0);
-  EXPECT_GE(s.separated, 40);
+  EXPECT_GE(s.separated, 30);
   EXPECT_GE(s.final_error, 0.05 * s.dissipation);
 }

@@ -10,7 +10,7 @@
 ///  * dg_element_forces: DG derivatives by lifting of the jumps over the element's lifted edges (theory.md
 ///    §5.2), strains, resultants (a point law passed in), the element's internal forces on its own nodes
 ///    and its lifting fluxes on the neighbours' edge nodes (§5.4). Returns the element's strain energy.
-///  * dg_penalty_forces: the interface stabilization forces (§5.5, paper eq. 52) and energy.
+/// The interface stabilization (penalty) forces are in dg_interface.hpp.
 /// Sign convention: forces are gradients of the energy (internal forces); the acceleration is
 /// (f_ext - f)/m. Spatial director moments g (3-vectors) are projected with Lambda-bar^T by the caller.
 /// Pure functions on plain arrays, usable in Kokkos kernels; they write only their own outputs, so the
@@ -33,6 +33,7 @@
 #include "shellfrac/disc/quadrature.hpp"
 #include "shellfrac/disc/shell_strains.hpp"
 #include "shellfrac/disc/small_tensor.hpp"
+#include "shellfrac/disc/strain_treatment.hpp"
 #include "shellfrac/disc/stress_power.hpp"
 
 namespace shellfrac::disc {
@@ -98,6 +99,14 @@ struct EdgeForcesOf {
 };
 using EdgeForces = EdgeForcesOf<double>;
 
+/// Sets the forces on the edge nodes of both sides of an interface to zero.
+KOKKOS_INLINE_FUNCTION void clear_edge_forces(EdgeForces& on_minus, EdgeForces& on_plus) {
+  for (int j = 0; j < 3; ++j)
+    for (int c = 0; c < 3; ++c) on_minus.f[j][c] = on_plus.f[j][c] = 0;
+  for (int j = 0; j < 2; ++j)
+    for (int c = 0; c < 3; ++c) on_minus.g[j][c] = on_plus.g[j][c] = 0;
+}
+
 /// Reference data of one local edge of an element.
 template <class T>
 struct DgEdgeRefOf {
@@ -124,9 +133,10 @@ struct DgElementRefOf {
   DgEdgeRefOf<T> edge[3];
   T area;                                   ///< |E| = sum_q w_q j0_q
   T Minv[3][3];                             ///< inverse of the P1 lifting mass matrix M_psi = sum_q w_q j0_q psi psi^T
-  /// Membrane strains and forces are used through their P1 L2 projection on the element (theory.md §5.4;
-  /// false: at the area points as they are). The same for every element of a batch.
-  bool project_membrane;
+  /// How the membrane and shear strains are used (theory.md §5.4). The same for every element of a batch.
+  StrainTreatment strains;
+  /// s in P = (1 - s) Pi + s I for the membrane strains (theory.md eq. 5.4a; 0: the projection only).
+  T membrane_remainder;
 };
 using DgElementRef = DgElementRefOf<double>;
 
@@ -177,18 +187,50 @@ KOKKOS_INLINE_FUNCTION void lifting_weights(const DgElementRefOf<T>& R, LiftingW
   }
 }
 
-/// The P1 L2 projection on the element as a matrix on area-point values: (Pi f)(xi_q) = sum_p P[q][p] f(xi_p),
-/// P[q][p] = psi(xi_q)^T M_psi^-1 psi(xi_p) w_p j0_p (theory.md §5.4).
+/// The L2 projection on the element onto `space` as a matrix on area-point values,
+/// (Pi f)(xi_q) = sum_p P[q][p] f(xi_p) (theory.md eq. 5.4b): P1, P[q][p] = psi(xi_q)^T M_psi^-1 psi(xi_p) w_p j0_p;
+/// P0, P[q][p] = w_p j0_p / |E|; point values, the identity. Every one satisfies w_q j0_q P[q][p] = w_p j0_p P[p][q],
+/// so the same matrix maps the strains and their work-conjugate resultants.
 template <class T>
-KOKKOS_INLINE_FUNCTION void projection_matrix(const DgElementRefOf<T>& R, const AreaPointShapes& S,
+KOKKOS_INLINE_FUNCTION void projection_matrix(const DgElementRefOf<T>& R, const AreaPointShapes& S, StrainSpace space,
                                               T P[num_area_points][num_area_points]) {
   for (int q = 0; q < num_area_points; ++q)
     for (int p = 0; p < num_area_points; ++p) {
-      T v = 0;
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) v += S.L[q][a] * R.Minv[a][b] * S.L[p][b];
-      P[q][p] = v * R.wj0[p];
+      if (space == StrainSpace::p1) {
+        T v = 0;
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b) v += S.L[q][a] * R.Minv[a][b] * S.L[p][b];
+        P[q][p] = v * R.wj0[p];
+      } else if (space == StrainSpace::p0) {
+        P[q][p] = R.wj0[p] / R.area;
+      } else {
+        P[q][p] = q == p ? T(1) : T(0);
+      }
     }
+}
+
+/// The matrices through which an element uses its strains (theory.md eq. 5.4a): membrane (1 - s) Pi + s I,
+/// shear the projection on the shear space. Only the ones the treatment maps are set.
+template <class T>
+struct StrainMatricesOf {
+  T membrane[num_area_points][num_area_points];
+  T shear[num_area_points][num_area_points];
+};
+
+template <class T>
+KOKKOS_INLINE_FUNCTION void strain_matrices(const DgElementRefOf<T>& R, const AreaPointShapes& S,
+                                            StrainMatricesOf<T>& P) {
+  const StrainTreatment& st = R.strains;
+  if (st.maps_membrane()) {
+    projection_matrix(R, S, st.membrane, P.membrane);
+    const T s = R.membrane_remainder;
+    for (int q = 0; q < num_area_points; ++q)
+      for (int p = 0; p < num_area_points; ++p) {
+        const T blended = (1 - s) * P.membrane[q][p];
+        P.membrane[q][p] = q == p ? blended + s : blended;
+      }
+  }
+  if (st.maps_shear()) projection_matrix(R, S, st.shear, P.shear);
 }
 
 namespace detail {
@@ -213,7 +255,7 @@ KOKKOS_INLINE_FUNCTION void inverse33(const double A[3][3], double B[3][3]) {
 /// consistently oriented neighbours; irrelevant for edges without a neighbour).
 KOKKOS_INLINE_FUNCTION void build_dg_element_ref(const double X[6][3], const double T0[3][3],
                                                  const bool nbr_same_direction[3], DgElementRef& R,
-                                                 bool project_membrane = false) {
+                                                 StrainTreatment strains = {}, double membrane_remainder = 0) {
   double L[3], dL[3][2];
   // Area points: geometry, reference kinematics -> strain offsets; lifting mass matrix.
   double Mpsi[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
@@ -246,7 +288,8 @@ KOKKOS_INLINE_FUNCTION void build_dg_element_ref(const double X[6][3], const dou
     R.ref[q] = make_shell_reference(k0);
   }
   detail::inverse33(Mpsi, R.Minv);
-  R.project_membrane = project_membrane;
+  R.strains = strains;
+  R.membrane_remainder = membrane_remainder;
   // Edges: arc-length weights and outward co-normals (theory.md §1.4).
   for (int k = 0; k < 3; ++k) {
     const int vi = edge_node(k, 0), vj = edge_node(k, 1);
@@ -371,10 +414,10 @@ KOKKOS_INLINE_FUNCTION void dg_kinematics(const DgElementRef& R, const DgElement
   dg_kinematics(R, S, W, e, kin);
 }
 
-/// f[q][c] <- (Pi f)(xi_q): the P1 L2 projection on the element of point values f[q][0..n-1] (P from
-/// projection_matrix).
+/// f[q][c] <- sum_p P[q][p] f[p][c]: a matrix on area-point values (projection_matrix, strain_matrices) applied
+/// to point values f[q][0..n-1].
 template <int n, class T>
-KOKKOS_INLINE_FUNCTION void project_p1(const T P[num_area_points][num_area_points], T f[num_area_points][n]) {
+KOKKOS_INLINE_FUNCTION void apply_point_matrix(const T P[num_area_points][num_area_points], T f[num_area_points][n]) {
   T g[num_area_points][n];
   for (int q = 0; q < num_area_points; ++q)
     for (int c = 0; c < n; ++c) {
@@ -385,26 +428,26 @@ KOKKOS_INLINE_FUNCTION void project_p1(const T P[num_area_points][num_area_point
     for (int c = 0; c < n; ++c) f[q][c] = g[q][c];
 }
 
-/// Strains at the area points from the DG kinematics (theory.md §2), with the membrane strains projected by P
-/// when the element projects them (theory.md §5.4; P is not read otherwise).
+/// Strains at the area points from the DG kinematics (theory.md §2), the membrane and shear strains used
+/// through the element's strain matrices P (theory.md eq. 5.4a; a matrix is read only where the element maps
+/// that strain).
 template <class T>
-KOKKOS_INLINE_FUNCTION void dg_strains(const DgElementRefOf<T>& R, const T P[num_area_points][num_area_points],
+KOKKOS_INLINE_FUNCTION void dg_strains(const DgElementRefOf<T>& R, const StrainMatricesOf<T>& P,
                                        const ShellKinematicsOf<T> kin[num_area_points], T eps[num_area_points][3],
                                        T gam[num_area_points][2], T rho[num_area_points][3]) {
   for (int q = 0; q < num_area_points; ++q) compute_strains(kin[q], R.ref[q], eps[q], gam[q], rho[q]);
-  if (R.project_membrane) project_p1<3>(P, eps);
+  if (R.strains.maps_membrane()) apply_point_matrix<3>(P.membrane, eps);
+  if (R.strains.maps_shear()) apply_point_matrix<2>(P.shear, gam);
 }
 
 /// The same, for one element on its own (diagnostics).
 KOKKOS_INLINE_FUNCTION void dg_strains(const DgElementRef& R, const ShellKinematics kin[num_area_points],
                                        double eps[num_area_points][3], double gam[num_area_points][2],
                                        double rho[num_area_points][3]) {
-  double P[num_area_points][num_area_points];
-  if (R.project_membrane) {
-    AreaPointShapes S;
-    area_point_shapes(S);
-    projection_matrix(R, S, P);
-  }
+  AreaPointShapes S;
+  area_point_shapes(S);
+  StrainMatricesOf<double> P;
+  strain_matrices(R, S, P);
   dg_strains(R, P, kin, eps, gam, rho);
 }
 
@@ -498,8 +541,8 @@ KOKKOS_INLINE_FUNCTION T dg_element_forces(const DgElementRefOf<T>& R, const DgE
   area_point_shapes(S);
   LiftingWeightsOf<T> W;
   lifting_weights(R, W);
-  T P[num_area_points][num_area_points];
-  if (R.project_membrane) projection_matrix(R, S, P);
+  StrainMatricesOf<T> P;
+  strain_matrices(R, S, P);
   ShellKinematicsOf<T> kins[num_area_points];
   dg_kinematics(R, S, W, e, kins);
   // 2'. Area points: strains, resultants, own forces; accumulate the projections Pi.
@@ -513,7 +556,9 @@ KOKKOS_INLINE_FUNCTION T dg_element_forces(const DgElementRefOf<T>& R, const DgE
   T N[num_area_points][3], Q[num_area_points][2], M[num_area_points][3];
   T energy = 0;
   for (int q = 0; q < num_area_points; ++q) energy += R.wj0[q] * law(q, eps[q], gam[q], rho[q], N[q], Q[q], M[q]);
-  if (R.project_membrane) project_p1<3>(P, N);  // the gradient of the energy of the projected strains
+  // The gradient of the energy of the mapped strains: the same matrices on N and Q (w_q P_qp = w_p P_pq).
+  if (R.strains.maps_membrane()) apply_point_matrix<3>(P.membrane, N);
+  if (R.strains.maps_shear()) apply_point_matrix<2>(P.shear, Q);
   for (int q = 0; q < num_area_points; ++q) {
     const ShellKinematicsOf<T>& kin = kins[q];
     T n[2][3], m[2][3], l[3];
@@ -536,57 +581,6 @@ KOKKOS_INLINE_FUNCTION T dg_element_forces(const DgElementRefOf<T>& R, const DgE
   }
   if (edge_tractions) edge_tractions_of(R, W, Pi, *edge_tractions);  // 2''.
   add_lifting_fluxes(R, W, e.lift, Pi, out);                           // 3.
-  return energy;
-}
-
-/// Reference data of an interface (the minus side's edge geometry; both sides share the reference edge).
-struct DgInterfaceRef {
-  double omega[num_edge_points];  ///< arc-length weights of the minus side's edge points
-  double s_plus[num_edge_points]; ///< plus side's edge parameter of the matched points
-  double inv_he;                  ///< 1 / h_e, h_e = sum_g omega_g (reference arc length)
-};
-
-/// Interface reference data from the minus element's edge reference data.
-KOKKOS_INLINE_FUNCTION void build_dg_interface_ref(const DgEdgeRef& minus_edge, DgInterfaceRef& I) {
-  double he = 0;
-  for (int g = 0; g < num_edge_points; ++g) {
-    I.omega[g] = minus_edge.omega[g];
-    I.s_plus[g] = neighbour_edge_parameter(minus_edge, g);
-    he += I.omega[g];
-  }
-  I.inv_he = 1.0 / he;
-}
-
-/// Stabilization (penalty) forces of an intact interface (theory.md §5.5; paper eqs. 42-44, 52):
-/// [[phi]] = phi^- - phi^+, n_stab = beta_x/h_e [[phi]], m_stab = beta_T/h_e [[t]]. Inputs are the edge
-/// nodes of each side in its own edge-local order. Outputs (overwritten) are forces on those nodes.
-/// Returns the stabilization energy U_stab.
-KOKKOS_INLINE_FUNCTION double dg_penalty_forces(const DgInterfaceRef& I, double beta_x, double beta_t,
-                                                const EdgeNodes& minus, const EdgeNodes& plus, EdgeForces& on_minus,
-                                                EdgeForces& on_plus) {
-  const auto &xm = minus.x, &xp = plus.x;
-  const auto &tm = minus.t, &tp = plus.t;
-  auto &fm = on_minus.f, &fp = on_plus.f;
-  auto &gm = on_minus.g, &gp = on_plus.g;
-  for (int j = 0; j < 3; ++j) fm[j][0] = fm[j][1] = fm[j][2] = fp[j][0] = fp[j][1] = fp[j][2] = 0;
-  for (int j = 0; j < 2; ++j) gm[j][0] = gm[j][1] = gm[j][2] = gp[j][0] = gp[j][1] = gp[j][2] = 0;
-  double energy = 0;
-  for (int g = 0; g < num_edge_points; ++g) {
-    const EdgePointShapes sh = edge_point_shapes(edge3_rule.s[g], I.s_plus[g]);
-    const double *nm = sh.p2, *np = sh.p2_other, *lm = sh.p1, *lp = sh.p1_other;
-    double jx[3], jt[3];
-    for (int c = 0; c < 3; ++c) {
-      jx[c] = 0, jt[c] = 0;
-      for (int j = 0; j < 3; ++j) jx[c] += nm[j] * xm[j][c] - np[j] * xp[j][c];
-      for (int j = 0; j < 2; ++j) jt[c] += lm[j] * tm[j][c] - lp[j] * tp[j][c];
-    }
-    const double cx = I.omega[g] * beta_x * I.inv_he, ct = I.omega[g] * beta_t * I.inv_he;
-    energy += 0.5 * (cx * dot3(jx, jx) + ct * dot3(jt, jt));
-    for (int c = 0; c < 3; ++c) {
-      for (int j = 0; j < 3; ++j) fm[j][c] += cx * jx[c] * nm[j], fp[j][c] -= cx * jx[c] * np[j];
-      for (int j = 0; j < 2; ++j) gm[j][c] += ct * jt[c] * lm[j], gp[j][c] -= ct * jt[c] * lp[j];
-    }
-  }
   return energy;
 }
 

@@ -66,7 +66,8 @@ KOKKOS_INLINE_FUNCTION void load(DgElementRefOf<Batch>& b, const DgElementRef& r
   }
   b.area.set(lane, r.area);
   load_array(b.Minv, r.Minv, lane);
-  b.project_membrane = r.project_membrane;  // the same on every lane (the caller checks)
+  b.strains = r.strains;  // the same on every lane (the caller checks)
+  b.membrane_remainder.set(lane, r.membrane_remainder);
 }
 
 KOKKOS_INLINE_FUNCTION void load(EdgeNodesOf<Batch>& b, const EdgeNodes& e, int lane) {

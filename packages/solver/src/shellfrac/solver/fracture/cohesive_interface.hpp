@@ -14,6 +14,7 @@
 #include <cmath>
 
 #include "shellfrac/disc/dg_element.hpp"
+#include "shellfrac/disc/dg_interface.hpp"
 #include "shellfrac/disc/small_tensor.hpp"
 #include "shellfrac/materials/cohesive_law.hpp"
 
@@ -238,8 +239,7 @@ KOKKOS_INLINE_FUNCTION CohesiveInterfaceResult cohesive_interface_forces(
   const auto &tm = minus.t, &tp = plus.t;
   auto &fm = on_minus.f, &fp = on_plus.f;
   auto &gm = on_minus.g, &gp = on_plus.g;
-  for (int j = 0; j < 3; ++j) fm[j][0] = fm[j][1] = fm[j][2] = fp[j][0] = fp[j][1] = fp[j][2] = 0;
-  for (int j = 0; j < 2; ++j) gm[j][0] = gm[j][1] = gm[j][2] = gp[j][0] = gp[j][1] = gp[j][2] = 0;
+  disc::clear_edge_forces(on_minus, on_plus);
   CohesiveInterfaceResult r;
   for (int g = 0; g < disc::num_edge_points; ++g) {
     const disc::EdgePointShapes sh = disc::edge_point_shapes(disc::edge3_rule.s[g], I.s_plus[g]);

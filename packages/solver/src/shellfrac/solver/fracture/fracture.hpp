@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "shellfrac/disc/dg_element.hpp"
+#include "shellfrac/disc/dg_interface.hpp"
 #include "shellfrac/materials/cohesive_law.hpp"
 #include "shellfrac/materials/cohesive_strength.hpp"
 #include "shellfrac/solver/input/dynamics_params.hpp"

@@ -20,17 +20,43 @@ Teuchos::RCP<const Teuchos::ParameterList> DiscretizationParams::valid_parameter
   pl->set("Position Penalty", 3.0, "c_x in beta_x = c_x E h (paper eq. 42; 3 in every example of the paper)",
           params::positive_double());
   pl->set("Director Penalty", 3.0, "c_T in beta_T = c_T E h^3/12 (paper eq. 42)", params::positive_double());
-  params::set_choice(*pl, "Membrane Strain", "Point Values",
-                     "Point Values: the membrane strains at the area points; P1 Projection: their L2 projection on "
-                     "linear fields in each element (theory.md §5.4)",
-                     {"Point Values", "P1 Projection"});
+  params::set_choice(*pl, "Membrane Strain", "Stabilized P0",
+                     "Stabilized P0: the element mean of the membrane strains plus a fraction of the remainder "
+                     "(Membrane Stabilization); P1 Projection: their L2 projection on linear fields in each element; "
+                     "Point Values: the strains at the area points as they are (theory.md §5.4)",
+                     {"Stabilized P0", "P1 Projection", "Point Values"});
+  pl->set("Membrane Stabilization", default_membrane_stabilization,
+          "Stabilized P0: kappa, the fraction of the energy of the membrane strains' deviation from their element "
+          "mean that a curved element keeps (theory.md eq. 5.4c; a flat one keeps all of it); small values free "
+          "spurious membrane modes",
+          params::double_range(1e-6, 1.0));
+  params::set_choice(*pl, "Shear Strain", "P1 Projection",
+                     "P1 Projection: the transverse shear strains through their L2 projection on linear fields in "
+                     "each element; Point Values: at the area points as they are (theory.md §5.4)",
+                     {"P1 Projection", "Point Values"});
   return pl;
+}
+
+double DiscretizationParams::membrane_remainder(const double X[6][3], double thickness) const {
+  if (strains.membrane != disc::StrainSpace::p0) return 0;
+  return disc::mean_membrane_remainder(disc::largest_edge_sagitta(X) / thickness, membrane_stabilization);
 }
 
 DiscretizationParams DiscretizationParams::from_parameters(Teuchos::ParameterList& pl, const params::Context& ctx) {
   params::validate(pl, *valid_parameters(), ctx);
-  return {pl.get<double>("Position Penalty"), pl.get<double>("Director Penalty"),
-          pl.get<std::string>("Membrane Strain") == "P1 Projection"};
+  const std::string membrane = pl.get<std::string>("Membrane Strain");
+  disc::StrainTreatment strains;
+  strains.membrane = membrane == "Stabilized P0"   ? disc::StrainSpace::p0
+                     : membrane == "P1 Projection" ? disc::StrainSpace::p1
+                                                   : disc::StrainSpace::point_values;
+  strains.shear = pl.get<std::string>("Shear Strain") == "P1 Projection" ? disc::StrainSpace::p1
+                                                                          : disc::StrainSpace::point_values;
+  const bool stabilized = strains.membrane == disc::StrainSpace::p0;
+  params::refuse_inapplicable(
+      pl, *valid_parameters(), "'Membrane Strain' = '" + membrane + "'",
+      [&](const std::string& name) { return name != "Membrane Stabilization" || stabilized; }, ctx);
+  return {pl.get<double>("Position Penalty"), pl.get<double>("Director Penalty"), strains,
+          pl.get<double>("Membrane Stabilization")};
 }
 
 Teuchos::RCP<const Teuchos::ParameterList> TimeParams::valid_parameters() {

@@ -8,13 +8,19 @@
 
 #include "shellfrac/core/parameters.hpp"
 #include "shellfrac/core/types.hpp"
+#include "shellfrac/disc/strain_treatment.hpp"
 
 namespace shellfrac::solver {
 
-/// "Discretization": DG stabilization constants (paper eq. 42: beta_x = c_x E h, beta_T = c_T E h^3/12).
+/// "Discretization": DG stabilization constants (paper eq. 42: beta_x = c_x E h, beta_T = c_T E h^3/12) and the
+/// treatment of the membrane and shear strains (theory.md §5.4).
 struct DiscretizationParams {
   double cx = 3.0, cT = 3.0;
-  bool project_membrane = false;  ///< membrane strains through their P1 projection (theory.md §5.4)
+  disc::StrainTreatment strains = {disc::StrainSpace::p0, disc::StrainSpace::p1};  ///< the deck's defaults
+  double membrane_stabilization = default_membrane_stabilization;  ///< kappa (theory.md eq. 5.4c)
+  static constexpr double default_membrane_stabilization = 0.1;
+  /// The membrane remainder s of an element (theory.md eqs. 5.4a, 5.4c) of reference nodes X and thickness h.
+  double membrane_remainder(const double X[6][3], double thickness) const;
   static Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
   static DiscretizationParams from_parameters(Teuchos::ParameterList& pl, const params::Context& ctx);
 };

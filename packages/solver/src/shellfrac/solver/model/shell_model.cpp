@@ -185,10 +185,12 @@ ShellModel::ShellModel(const decomposition::DistributedMesh& d, const ModelParam
       lifted[le][k] = nb >= 0 && !not_lifted.count({le, k});
       same[k] = nb >= 0 && same_edge_direction(dm, le, k, nb, dm.neighbor_edge(le, k));
     }
-    disc::build_dg_element_ref(Xe, Te, same, element_refs[le], params.discretization.project_membrane);
     const BlockSection& sc = sections.at(dm.element_block(le));
     const auto& m = sc.material;
     const double h = sc.thickness;
+    const auto& discretization = params.discretization;
+    disc::build_dg_element_ref(Xe, Te, same, element_refs[le], discretization.strains,
+                               discretization.membrane_remainder(Xe, h));
     disc::StableStepParams sp{m.youngs_modulus, m.poissons_ratio, m.density, h};
     sp.cx = params.discretization.cx, sp.cT = params.discretization.cT, sp.rotary_scale = rotary_scale;
     const double dt_e = disc::element_stable_dt(sp, disc::characteristic_length(Xe));

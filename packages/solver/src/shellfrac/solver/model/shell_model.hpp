@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "shellfrac/disc/dg_element.hpp"
+#include "shellfrac/disc/dg_interface.hpp"
 #include "shellfrac/materials/elastic_resultant.hpp"
 #include "shellfrac/materials/material_params.hpp"
 #include "shellfrac/materials/resultant_plasticity.hpp"

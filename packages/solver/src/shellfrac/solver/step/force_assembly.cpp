@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "shellfrac/decomposition/distributed_mesh.hpp"
+#include "shellfrac/disc/dg_interface.hpp"
 #include "shellfrac/disc/element_lanes.hpp"
 #include "shellfrac/materials/elastic_resultant.hpp"
 #include "shellfrac/solver/fracture/cohesive_interface.hpp"
@@ -261,10 +262,10 @@ struct ElementForcesKernel {
   KOKKOS_INLINE_FUNCTION void operator()(LocalId b) const {
     const LocalId first = b * disc::batch_width;
     const LocalId end = first + disc::batch_width;
-    bool same_membrane = end <= owned;
-    for (LocalId le = first + 1; same_membrane && le < end; ++le)
-      same_membrane = refs(le).project_membrane == refs(first).project_membrane;
-    if (same_membrane)
+    bool same_strains = end <= owned;
+    for (LocalId le = first + 1; same_strains && le < end; ++le)
+      same_strains = refs(le).strains == refs(first).strains;
+    if (same_strains)
       batch(first);
     else
       for (LocalId le = first; le < end && le < owned; ++le) one_element(le);
