@@ -4,8 +4,10 @@
 //    r, r + np, ...; id 0 also from every rank, as an interface two ranks hold); the file holds every id once,
 //    sorted; read whole on every rank, the table equals the generator bitwise.
 //  * EachRankReceivesOnlyTheRowsItAsksFor: read with a per-rank list of ids (some absent from the file, some on
-//    both sides of the reader's block boundaries), a rank gets exactly the rows of the listed ids the file has,
-//    sorted, and nothing else: no rank but the reader sees a row it did not ask for (docs/parallel.md).
+//    both sides of the boundaries of the ranks' and rounds' pieces), a rank gets exactly the rows of the listed ids
+//    the file has, sorted, and nothing else (docs/parallel.md).
+//  * TheFileIsTheSameWhateverTheRanksThatWroteIt: the same rows written by every rank (interleaved, as above) and
+//    by rank 0 alone give the same file contents: ids, values and the checksum attribute, bitwise.
 //  * TheChecksumCoversEveryTable: a value changed in the file (through HDF5, so the chunk checksums stay
 //    valid) is refused by the file checksum.
 //  * TableSizesAreCheckedAgainstTheFileBeforeAllocating: a table declaring 2^40 rows it does not hold is refused
@@ -27,7 +29,7 @@ using namespace shellfrac;
 namespace {
 
 constexpr int width = 5;
-constexpr GlobalId num_ids = 40000;  // more than two blocks of 4 HDF5 chunks of 4096 rows (what rank 0 writes at a time)
+constexpr GlobalId num_ids = 40000;  // more than two blocks of 4 HDF5 chunks of 4096 rows (what a rank writes at a time)
 
 double value(GlobalId id, int c) { return std::sin(double(id) * 0.37 + c) * 1e3 + double(id); }
 
@@ -92,15 +94,65 @@ TEST(Checkpoint, EachRankReceivesOnlyTheRowsItAsksFor) {
   io::write_checkpoint(path, share(), MPI_COMM_WORLD);
   const int r = parallel::rank();
   // Rank r asks for ids 7r .. 7r + 20 in decreasing order, for the ids on both sides of the first two block
-  // boundaries of the reader (16 384 rows a block), and for two ids the file does not have.
-  std::vector<GlobalId> ask{num_ids + 5, -3, 32768 + r, 32767 - r, 16384 + r, 16383 - r};
+  // boundaries (16 384 rows a block) and of thirds of the file (the ranks' slices on 3 ranks, the rounds' pieces
+  // on 1), and for two ids the file does not have.
+  std::vector<GlobalId> ask{num_ids + 5, -3, 32768 + r, 32767 - r, 16384 + r, 16383 - r, 13333 + r, 13332 - r};
   for (GlobalId id = 7 * r + 20; id >= 7 * r; --id) ask.push_back(id);
   const auto d = io::read_checkpoint(path, MPI_COMM_WORLD, {{"elements", ask}});
   std::vector<GlobalId> expected;
   for (GlobalId id = 7 * r; id <= 7 * r + 20; ++id) expected.push_back(id);
-  for (const GlobalId id : {16383 - r, 16384 + r, 32767 - r, 32768 + r}) expected.push_back(id);
+  for (const GlobalId id : {13332 - r, 13333 + r, 16383 - r, 16384 + r, 32767 - r, 32768 + r}) expected.push_back(id);
   expect_rows(d.tables.at("elements"), expected);
   EXPECT_EQ(d.tables.at("empty").width, 3);  // not asked for: whole (empty)
+}
+
+/// The ids, values and checksum attribute of a file's table "elements", read on one rank.
+struct FileContents {
+  std::vector<GlobalId> ids;
+  std::vector<double> values;
+  std::string checksum;
+};
+FileContents contents(const std::string& path) {
+  FileContents c;
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  EXPECT_GE(file, 0) << path;
+  const hid_t ids = H5Dopen2(file, "/tables/elements/ids", H5P_DEFAULT);
+  const hid_t values = H5Dopen2(file, "/tables/elements/values", H5P_DEFAULT);
+  c.ids.resize(num_ids), c.values.resize(num_ids * width);
+  EXPECT_GE(H5Dread(ids, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, c.ids.data()), 0);
+  EXPECT_GE(H5Dread(values, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, c.values.data()), 0);
+  const hid_t attr = H5Aopen(file, "checksum", H5P_DEFAULT), type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, H5T_VARIABLE);
+  char* s = nullptr;
+  EXPECT_GE(H5Aread(attr, type, &s), 0);
+  c.checksum = s ? s : "";
+  H5free_memory(s);
+  H5Tclose(type), H5Aclose(attr), H5Dclose(values), H5Dclose(ids), H5Fclose(file);
+  return c;
+}
+
+TEST(Checkpoint, TheFileIsTheSameWhateverTheRanksThatWroteIt) {
+  const std::string all = file_name("by_every_rank"), one = file_name("by_rank_0");
+  io::write_checkpoint(all, share(), MPI_COMM_WORLD);
+  MPI_Comm self;
+  MPI_Comm_split(MPI_COMM_WORLD, parallel::rank() == 0 ? 0 : MPI_UNDEFINED, 0, &self);
+  if (parallel::rank() == 0) {
+    io::CheckpointData whole = share();  // rank 0's share plus every other id: the same rows as all ranks give
+    auto& t = whole.tables["elements"];
+    t.ids.clear(), t.values.clear();
+    for (GlobalId id = num_ids - 1; id >= 0; --id) {
+      t.ids.push_back(id);
+      for (int c = 0; c < width; ++c) t.values.push_back(value(id, c));
+    }
+    io::write_checkpoint(one, whole, self);
+    MPI_Comm_free(&self);
+    const FileContents a = contents(all), b = contents(one);
+    EXPECT_EQ(a.ids, b.ids);
+    EXPECT_EQ(a.values, b.values);
+    EXPECT_EQ(a.checksum, b.checksum);
+    EXPECT_EQ(a.checksum.size(), 32u);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
 }
 
 TEST(Checkpoint, TheChecksumCoversEveryTable) {

@@ -3,7 +3,8 @@
 //    test_fracture) is run to 14 us continuously, and to 10.5 us (after the edge activated at ~9.99 us, before
 //    it separates at ~11.0 us) with a checkpoint, then restarted to 14 us: the resumed history file and the
 //    final nodal and element fields must equal the continuous run's bitwise.
-//  * On 3 ranks also across rank counts: written on 3 ranks and restarted on 2, written on 1 and restarted on 3.
+//  * On 3 ranks also across rank counts: written on 3 ranks and restarted on 2, written on 1 and restarted on 3;
+//    on 4 ranks written on 4 (every rank writing its rows of the file) and restarted on 3 and on 1.
 //  * ExactOutputTimesLandOnEveryFrameAndEndTime: with Exact Output Times and an Output Interval I = 2^-18 s (so
 //    that its multiples are exact in binary), every frame is at k I exactly and the last at End Time (14 us, not a
 //    multiple), though the time step divides neither; a run split at 3 I (an output time, where both runs land)
@@ -170,6 +171,18 @@ TEST(Restart, ContinuesBitwiseThroughCrackActivation) {
     broken_run(c, self, MPI_COMM_WORLD);
     expect_same(ref, c, "written on 1 rank, restarted on 3");
     if (two != MPI_COMM_NULL) MPI_Comm_free(&two);
+    if (self != MPI_COMM_NULL) MPI_Comm_free(&self);
+  }
+  if (parallel::size() == 4) {
+    MPI_Comm three, self;
+    MPI_Comm_split(MPI_COMM_WORLD, parallel::rank() < 3 ? 0 : MPI_UNDEFINED, parallel::rank(), &three);
+    MPI_Comm_split(MPI_COMM_WORLD, parallel::rank() == 0 ? 0 : MPI_UNDEFINED, 0, &self);
+    const auto a = fresh(root + "/four_to_three"), c = fresh(root + "/four_to_one");
+    broken_run(a, MPI_COMM_WORLD, three);
+    expect_same(ref, a, "written on 4 ranks, restarted on 3");
+    broken_run(c, MPI_COMM_WORLD, self);
+    expect_same(ref, c, "written on 4 ranks, restarted on 1");
+    if (three != MPI_COMM_NULL) MPI_Comm_free(&three);
     if (self != MPI_COMM_NULL) MPI_Comm_free(&self);
   }
 }

@@ -1,12 +1,11 @@
 #include "shellfrac/io/checkpoint.hpp"
 
-
+#include <climits>
+#include <cstdint>
 #include <algorithm>
 #include <functional>
 #include <memory>
 #include <numeric>
-#include <optional>
-#include <queue>
 #include <utility>
 
 #include "shellfrac/core/error.hpp"
@@ -16,38 +15,6 @@
 namespace shellfrac::io {
 
 namespace {
-
-// Point-to-point transfers of long vectors (MPI counts are int: sent in pieces of 2^27 values).
-template <class T>
-MPI_Datatype mpi_type();
-template <>
-MPI_Datatype mpi_type<double>() {
-  return MPI_DOUBLE;
-}
-template <>
-MPI_Datatype mpi_type<std::int64_t>() {
-  return MPI_INT64_T;
-}
-constexpr std::size_t piece = std::size_t(1) << 27;
-
-template <class T>
-void send_vector(const std::vector<T>& v, int to, MPI_Comm comm) {
-  std::uint64_t n = v.size();
-  MPI_Send(&n, 1, MPI_UINT64_T, to, 0, comm);
-  for (std::size_t off = 0; off < v.size(); off += piece)
-    MPI_Send(v.data() + off, static_cast<int>(std::min(piece, v.size() - off)), mpi_type<T>(), to, 0, comm);
-}
-
-template <class T>
-std::vector<T> receive_vector(int from, MPI_Comm comm) {
-  std::uint64_t n = 0;
-  MPI_Recv(&n, 1, MPI_UINT64_T, from, 0, comm, MPI_STATUS_IGNORE);
-  std::vector<T> v(n);
-  for (std::size_t off = 0; off < v.size(); off += piece)
-    MPI_Recv(v.data() + off, static_cast<int>(std::min(piece, v.size() - off)), mpi_type<T>(), from, 0, comm,
-             MPI_STATUS_IGNORE);
-  return v;
-}
 
 /// One table as a rank gives it: its ids, sorted, and a way to read a range of its rows in that order.
 struct LocalRows {
@@ -74,92 +41,6 @@ LocalRows local_rows(const CheckpointData& d, const std::string& name) {
   return r;
 }
 
-// The row requests of a table from rank 0 to rank r: (first, count) of r's rows, answered with their values; a
-// request with count 0 ends the table.
-std::vector<double> request_rows(int r, std::size_t first, std::size_t count, MPI_Comm comm) {
-  const std::uint64_t request[2] = {first, count};
-  MPI_Send(request, 2, MPI_UINT64_T, r, 0, comm);
-  return receive_vector<double>(r, comm);
-}
-void end_row_requests(int r, MPI_Comm comm) {
-  const std::uint64_t request[2] = {0, 0};
-  MPI_Send(request, 2, MPI_UINT64_T, r, 0, comm);
-}
-void serve_row_requests(const LocalRows& t, MPI_Comm comm) {
-  std::vector<double> values;
-  for (;;) {
-    std::uint64_t request[2] = {0, 0};
-    MPI_Recv(request, 2, MPI_UINT64_T, 0, 0, comm, MPI_STATUS_IGNORE);
-    if (request[1] == 0) return;
-    const bool valid = request[0] + request[1] <= t.ids.size();
-    values.assign(valid ? request[1] * std::size_t(t.width) : 0, 0.0);  // rank 0 reports a short answer
-    if (valid) t.rows(request[0], request[1], values.data());
-    send_vector(values, 0, comm);
-  }
-}
-
-/// The ranks' sorted ids of a table merged in id order (an id several ranks give is taken from the lowest of them),
-/// walked a block of rows at a time.
-class RowMerge {
- public:
-  /// ids[r]: rank r's ids, sorted (an id repeated within a rank is taken once).
-  explicit RowMerge(const std::vector<std::vector<GlobalId>>& ids) : ids_(ids) {
-    restart();
-    std::vector<std::size_t> first, count;
-    for (;;) {
-      const auto& block = next_block(checkpoint_rows_per_block, first, count);
-      if (block.empty()) break;
-      for (const auto& [r, row] : block) sorted_.push_back(ids_[std::size_t(r)][row]);
-    }
-    size_ = sorted_.size();
-    restart();
-  }
-  std::size_t size() const { return size_; }
-  /// The merged ids (once: they are handed over).
-  std::vector<GlobalId> take_sorted_ids() { return std::move(sorted_); }
-  /// The next n rows: (rank, row) of each; first[r] and count[r] the range of rank r's rows the block passes
-  /// (including repeats of a lower rank's ids, not taken).
-  const std::vector<std::pair<int, std::size_t>>& next_block(std::size_t n, std::vector<std::size_t>& first,
-                                                             std::vector<std::size_t>& count) {
-    first = cursor_;
-    block_.clear();
-    while (block_.size() < n && !heads_.empty()) {
-      const auto [id, r] = heads_.top();
-      block_.emplace_back(r, cursor_[std::size_t(r)]);
-      while (!heads_.empty() && heads_.top().first == id) {
-        const int rr = heads_.top().second;
-        heads_.pop();
-        pass(rr, id);
-      }
-    }
-    count.resize(cursor_.size());
-    for (std::size_t r = 0; r < cursor_.size(); ++r) count[r] = cursor_[r] - first[r];
-    return block_;
-  }
-
- private:
-  void restart() {
-    cursor_.assign(ids_.size(), 0);
-    heads_ = {};
-    for (std::size_t r = 0; r < ids_.size(); ++r)
-      if (!ids_[r].empty()) heads_.emplace(ids_[r][0], int(r));
-  }
-  /// Moves rank r past `id` and queues its next id.
-  void pass(int r, GlobalId id) {
-    const auto& mine = ids_[std::size_t(r)];
-    std::size_t& c = cursor_[std::size_t(r)];
-    while (c < mine.size() && mine[c] == id) ++c;
-    if (c < mine.size()) heads_.emplace(mine[c], r);
-  }
-
-  const std::vector<std::vector<GlobalId>>& ids_;
-  std::vector<std::size_t> cursor_;
-  std::priority_queue<std::pair<GlobalId, int>, std::vector<std::pair<GlobalId, int>>, std::greater<>> heads_;
-  std::vector<std::pair<int, std::size_t>> block_;
-  std::vector<GlobalId> sorted_;
-  std::size_t size_ = 0;
-};
-
 /// The names of the tables and table sources, sorted, the same on every rank (an internal error otherwise).
 /// Collective.
 std::vector<std::string> agreed_table_names(const CheckpointData& local, MPI_Comm comm) {
@@ -178,6 +59,225 @@ std::vector<std::string> agreed_table_names(const CheckpointData& local, MPI_Com
   return names;
 }
 
+/// MPI's type of T.
+template <class T>
+MPI_Datatype mpi_type();
+template <>
+MPI_Datatype mpi_type<double>() {
+  return MPI_DOUBLE;
+}
+template <>
+MPI_Datatype mpi_type<std::int64_t>() {
+  return MPI_INT64_T;
+}
+
+/// Sends send[q] to rank q and returns what every rank sent here, concatenated in rank order, with the number of
+/// values from each rank in `counts` (a round's worth: at most a few blocks of rows). Collective.
+template <class T>
+std::vector<T> exchange(const std::vector<std::vector<T>>& send, std::vector<int>& counts, MPI_Comm comm) {
+  const int np = parallel::size(comm);
+  std::vector<int> send_counts(std::size_t(np), 0), send_offsets(std::size_t(np), 0), offsets(std::size_t(np), 0);
+  std::vector<T> out;
+  for (int q = 0; q < np; ++q) {
+    send_offsets[std::size_t(q)] = static_cast<int>(out.size());
+    send_counts[std::size_t(q)] = static_cast<int>(send[std::size_t(q)].size());
+    out.insert(out.end(), send[std::size_t(q)].begin(), send[std::size_t(q)].end());
+  }
+  counts.assign(std::size_t(np), 0);
+  MPI_Alltoall(send_counts.data(), 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  std::size_t total = 0;
+  for (int q = 0; q < np; ++q) offsets[std::size_t(q)] = static_cast<int>(total), total += std::size_t(counts[std::size_t(q)]);
+  std::vector<T> in(std::max<std::size_t>(total, 1));
+  out.resize(std::max<std::size_t>(out.size(), 1));
+  SHELLFRAC_REQUIRE(MPI_Alltoallv(out.data(), send_counts.data(), send_offsets.data(), mpi_type<T>(), in.data(),
+                                  counts.data(), offsets.data(), mpi_type<T>(), comm) == MPI_SUCCESS,
+                    "checkpoint: exchange of rows failed");
+  in.resize(total);
+  return in;
+}
+
+/// x * num / den without overflow (all non-negative, the result below 2^63).
+__extension__ using Wide = unsigned __int128;
+std::uint64_t scaled(std::uint64_t x, std::uint64_t num, std::uint64_t den) {
+  return std::uint64_t(Wide(x) * num / den);
+}
+
+/// Who writes which rows of a table: rank r the ids in [bound(r, 0), bound(r, rounds)) (a P-th of the table's
+/// id range), in round k those in [bound(r, k), bound(r, k + 1)). The ids of a round are spread over the whole
+/// range (a piece of every rank's share), so that a rank sends about a block of rows a round however the ids are
+/// distributed over the ranks; balanced when the ids are dense, as the element and interface ids are.
+struct WriteSlices {
+  GlobalId lo = 0;
+  std::uint64_t span = 0;  ///< hi - lo + 1, 0 for a table without rows
+  int np = 1;
+  std::size_t rounds = 1;
+
+  WriteSlices(const std::vector<GlobalId>& ids, MPI_Comm comm) : np(parallel::size(comm)) {
+    std::int64_t range[2] = {ids.empty() ? INT64_MAX : ids.front(), ids.empty() ? INT64_MIN : -ids.back()};
+    MPI_Allreduce(MPI_IN_PLACE, range, 2, MPI_INT64_T, MPI_MIN, comm);
+    if (range[0] > -range[1]) return;
+    lo = range[0], span = std::uint64_t(-range[1] - range[0]) + 1;
+    const std::uint64_t share = (span + std::uint64_t(np) - 1) / std::uint64_t(np);
+    rounds = std::max<std::size_t>(1, (share + checkpoint_rows_per_block - 1) / checkpoint_rows_per_block);
+  }
+  GlobalId bound(int r, std::size_t k) const {
+    const std::uint64_t a = scaled(span, std::uint64_t(r), std::uint64_t(np));
+    const std::uint64_t b = scaled(span, std::uint64_t(r) + 1, std::uint64_t(np));
+    return lo + GlobalId(a + scaled(b - a, k, rounds));
+  }
+};
+
+/// Round k of writing a table: every rank sends the rows it gives of the ids each rank writes this round; returns
+/// the rows this rank writes, sorted, each id once (of an id given by several ranks, or twice by one, the row of the
+/// lowest rank, first given). Only the ids when `with_values` is false. Collective.
+void gather_round(const LocalRows& mine, const WriteSlices& slices, std::size_t k, bool with_values, int width,
+                  std::vector<GlobalId>& ids, std::vector<double>& values, MPI_Comm comm) {
+  const int np = slices.np;
+  std::vector<std::vector<GlobalId>> send_ids(static_cast<std::size_t>(np));
+  std::vector<std::vector<double>> send_values(static_cast<std::size_t>(np));
+  for (int q = 0; q < np; ++q) {
+    const auto first = std::lower_bound(mine.ids.begin(), mine.ids.end(), slices.bound(q, k));
+    const auto end = std::lower_bound(first, mine.ids.end(), slices.bound(q, k + 1));
+    send_ids[std::size_t(q)].assign(first, end);
+    if (!with_values || first == end) continue;
+    send_values[std::size_t(q)].resize(std::size_t(end - first) * std::size_t(width));
+    mine.rows(std::size_t(first - mine.ids.begin()), std::size_t(end - first), send_values[std::size_t(q)].data());
+  }
+  std::vector<int> counts;
+  const std::vector<GlobalId> in_ids = exchange(send_ids, counts, comm);
+  send_ids = {};
+  const std::vector<double> in_values = with_values ? exchange(send_values, counts, comm) : std::vector<double>();
+  std::vector<std::size_t> order(in_ids.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));  // in rank order: a stable sort keeps the lowest first
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return in_ids[a] < in_ids[b]; });
+  ids.clear(), values.clear();
+  for (const std::size_t i : order) {
+    if (!ids.empty() && ids.back() == in_ids[i]) continue;
+    ids.push_back(in_ids[i]);
+    if (with_values)
+      values.insert(values.end(), in_values.begin() + std::ptrdiff_t(i * std::size_t(width)),
+                    in_values.begin() + std::ptrdiff_t((i + 1) * std::size_t(width)));
+  }
+}
+
+/// Writes table `name`: every rank writes its share of the id range, a round at a time, at the rows the ids before
+/// it take (counted in a first pass over the ids only). Collective.
+void write_table(const std::string& name, const CheckpointData& local, CheckpointFileWriter& writer, MPI_Comm comm) {
+  const LocalRows mine = local_rows(local, name);
+  const int width = static_cast<int>(parallel::max(double(mine.width), comm));
+  parallel::on_all_then_agree(
+      [&] {
+        SHELLFRAC_REQUIRE(mine.ids.empty() || mine.width == width,
+                          "checkpoint table " << name << ": rows of width " << mine.width << " here, " << width
+                                              << " on another rank");
+        SHELLFRAC_REQUIRE(std::is_sorted(mine.ids.begin(), mine.ids.end()),
+                          "checkpoint table " << name << ": the ids are not sorted");
+      },
+      comm);
+  const WriteSlices slices(mine.ids, comm);
+  std::vector<GlobalId> ids;
+  std::vector<double> values;
+  std::vector<std::int64_t> round_rows(slices.rounds, 0);  // rows this rank writes in each round
+  std::int64_t my_rows = 0;
+  for (std::size_t k = 0; k < slices.rounds; ++k) {
+    gather_round(mine, slices, k, false, width, ids, values, comm);
+    round_rows[k] = std::int64_t(ids.size()), my_rows += round_rows[k];
+  }
+  std::int64_t first = 0;
+  MPI_Exscan(&my_rows, &first, 1, MPI_INT64_T, MPI_SUM, comm);
+  if (parallel::rank(comm) == 0) first = 0;
+  writer.begin_table(name, width, std::size_t(parallel::sum(my_rows, comm)));
+  for (std::size_t k = 0; k < slices.rounds; ++k) {
+    gather_round(mine, slices, k, true, width, ids, values, comm);
+    parallel::on_all_then_agree(
+        [&] { SHELLFRAC_REQUIRE(std::int64_t(ids.size()) == round_rows[k], "checkpoint table " << name << " changed"); },
+        comm);
+    writer.write_rows(std::size_t(first), ids.data(), values.data(), ids.size());
+    first += round_rows[k];
+  }
+}
+
+/// Which rows of a table each rank reads in each round. A table asked for by rows: rank r reads its P-th of the
+/// file, rows [N r / P, N (r + 1) / P), a block at a time. A table every rank gets whole: round k is block k of
+/// the file, shared among the ranks (the rounds then come in file order).
+struct ReadPieces {
+  std::size_t num_rows = 0;
+  int np = 1;
+  bool whole = false;
+  std::size_t rounds = 1;
+
+  ReadPieces(std::size_t n, int ranks, bool whole_table) : num_rows(n), np(ranks), whole(whole_table) {
+    const std::size_t block = checkpoint_rows_per_block, share = (n + std::size_t(np) - 1) / std::size_t(np);
+    rounds = std::max<std::size_t>(1, ((whole ? n : share) + block - 1) / block);
+  }
+  /// Rows [first, end) that rank r reads in round k.
+  std::pair<std::size_t, std::size_t> piece(int r, std::size_t k) const {
+    std::size_t a = 0, b = num_rows;
+    if (whole)
+      a = std::min(num_rows, k * checkpoint_rows_per_block), b = std::min(num_rows, a + checkpoint_rows_per_block);
+    const auto at = [&](std::size_t lo, std::size_t hi, std::uint64_t i, std::uint64_t of) {
+      return lo + std::size_t(scaled(hi - lo, i, of));
+    };
+    if (whole) return {at(a, b, std::uint64_t(r), std::uint64_t(np)), at(a, b, std::uint64_t(r) + 1, std::uint64_t(np))};
+    const std::size_t s = at(a, b, std::uint64_t(r), std::uint64_t(np)), e = at(a, b, std::uint64_t(r) + 1, std::uint64_t(np));
+    return {at(s, e, k, rounds), at(s, e, k + 1, rounds)};
+  }
+};
+
+/// The rows of a round read by the ranks that another rank asks for: `asked` (sorted, unique) split by the id
+/// range of each rank's piece, sent there, answered with the rows it has. Returns this rank's rows, sorted (the
+/// pieces of a round are in rank order in the file). Collective.
+CheckpointTable share_asked_rows(const std::vector<GlobalId>& piece_ids, const std::vector<double>& piece_values,
+                                 int width, const std::vector<GlobalId>& asked, MPI_Comm comm) {
+  const int np = parallel::size(comm);
+  std::int64_t mine[3] = {piece_ids.empty() ? 0 : piece_ids.front(), piece_ids.empty() ? 0 : piece_ids.back(),
+                          std::int64_t(piece_ids.size())};
+  std::vector<std::int64_t> ranges(std::size_t(3 * np));
+  MPI_Allgather(mine, 3, MPI_INT64_T, ranges.data(), 3, MPI_INT64_T, comm);
+  std::vector<std::vector<GlobalId>> requests(static_cast<std::size_t>(np));
+  for (int q = 0; q < np; ++q) {
+    const std::int64_t* range = ranges.data() + 3 * q;
+    if (range[2] == 0) continue;
+    const auto first = std::lower_bound(asked.begin(), asked.end(), range[0]);
+    requests[std::size_t(q)].assign(first, std::upper_bound(first, asked.end(), range[1]));
+  }
+  std::vector<int> counts;
+  const std::vector<GlobalId> wanted_here = exchange(requests, counts, comm);
+  std::vector<std::vector<GlobalId>> found_ids(static_cast<std::size_t>(np));
+  std::vector<std::vector<double>> found_values(static_cast<std::size_t>(np));
+  std::size_t at = 0;
+  for (int q = 0; q < np; ++q)
+    for (int i = 0; i < counts[std::size_t(q)]; ++i, ++at) {
+      const auto it = std::lower_bound(piece_ids.begin(), piece_ids.end(), wanted_here[at]);
+      if (it == piece_ids.end() || *it != wanted_here[at]) continue;  // not in the file
+      const std::size_t row = std::size_t(it - piece_ids.begin());
+      found_ids[std::size_t(q)].push_back(*it);
+      found_values[std::size_t(q)].insert(found_values[std::size_t(q)].end(),
+                                          piece_values.begin() + std::ptrdiff_t(row * std::size_t(width)),
+                                          piece_values.begin() + std::ptrdiff_t((row + 1) * std::size_t(width)));
+    }
+  CheckpointTable own;
+  own.width = width;
+  own.ids = exchange(found_ids, counts, comm);
+  own.values = exchange(found_values, counts, comm);
+  return own;
+}
+
+/// The ids of table `name` this rank asks for (sorted, unique); `whole` when no rank names the table (it then goes
+/// whole to every rank). Collective.
+std::vector<GlobalId> asked_ids(const std::string& path, const std::string& name, const WantedRows& wanted,
+                                bool& whole, MPI_Comm comm) {
+  const std::vector<GlobalId>* ask = wanted(name);
+  whole = ask == nullptr;
+  SHELLFRAC_REQUIRE(!(parallel::any(whole, comm) && parallel::any(!whole, comm)),
+                    "checkpoint " << path << ": table " << name << " is asked for by some ranks only");
+  std::vector<GlobalId> ids;
+  if (whole) return ids;
+  ids = *ask;
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  return ids;
+}
 }  // namespace
 
 CheckpointData built(CheckpointData data) {
@@ -197,255 +297,57 @@ const double* CheckpointTable::row(GlobalId id) const {
   return values.data() + (it - ids.begin()) * width;
 }
 
-namespace {
-
-/// The first error met on rank 0 while writing, raised on every rank at the end (the other ranks go on serving
-/// rows so that nobody hangs).
-struct RootError {
-  int me = 0;
-  int kind = 0;  ///< 0 none, 1 InputError, 2 Error, 3 OutputError
-  std::string message;
-
-  /// Runs fn on rank 0 while no error has been met, keeping the first error.
-  template <class Fn>
-  void attempt(const Fn& fn) {
-    if (me != 0 || kind != 0) return;
-    try {
-      fn();
-    } catch (const OutputError& e) {
-      kind = 3, message = e.what();
-    } catch (const InputError& e) {
-      kind = 1, message = e.what();
-    } catch (const std::exception& e) {
-      kind = 2, message = e.what();
-    }
-  }
-  /// Collective: throws rank 0's error, of its kind, on every rank.
-  void raise_everywhere(MPI_Comm comm) {
-    MPI_Bcast(&kind, 1, MPI_INT, 0, comm);
-    if (kind == 0) return;
-    parallel::broadcast(message, 0, comm);
-    if (kind == 1) throw InputError(message);
-    if (kind == 3) throw OutputError(message);
-    throw Error(message);
-  }
-};
-
-/// Rank 0's part of writing table `name`: gathers every rank's ids, merges them, then writes block by block with
-/// the rows asked of each rank.
-void write_table_on_root(const std::string& name, const LocalRows& mine, int width, CheckpointFileWriter* writer,
-                         RootError& failure, MPI_Comm comm) {
-  const int np = parallel::size(comm);
-  std::vector<std::vector<GlobalId>> ids(static_cast<std::size_t>(np));
-  std::vector<int> widths(static_cast<std::size_t>(np), mine.width);
-  ids[0] = mine.ids;
-  for (int r = 1; r < np; ++r) {
-    widths[std::size_t(r)] = static_cast<int>(receive_vector<std::int64_t>(r, comm).at(0));
-    ids[std::size_t(r)] = receive_vector<std::int64_t>(r, comm);
-  }
-  std::optional<RowMerge> merge;
-  failure.attempt([&] {
-    for (int r = 0; r < np; ++r) {
-      const auto& theirs = ids[std::size_t(r)];
-      SHELLFRAC_REQUIRE(theirs.empty() || widths[std::size_t(r)] == width,
-                        "checkpoint table " << name << ": rows of width " << widths[std::size_t(r)] << " from rank "
-                                            << r << ", " << width << " from another");
-      SHELLFRAC_REQUIRE(std::is_sorted(theirs.begin(), theirs.end()),
-                        "checkpoint table " << name << ": the ids of rank " << r << " are not sorted");
-    }
-    merge.emplace(ids);
-    writer->begin_table(name, width, merge->take_sorted_ids());
-  });
-  std::vector<double> block;
-  std::vector<std::size_t> first(static_cast<std::size_t>(np)), count(static_cast<std::size_t>(np));
-  std::vector<std::vector<double>> rows(static_cast<std::size_t>(np));
-  for (std::size_t done = 0; failure.kind == 0 && merge && done < merge->size(); done += checkpoint_rows_per_block) {
-    const std::size_t n = std::min(checkpoint_rows_per_block, merge->size() - done);
-    const auto& sources = merge->next_block(n, first, count);  // (rank, row) of each row of the block
-    for (int r = 0; r < np; ++r) {
-      auto& buffer = rows[std::size_t(r)];
-      buffer.resize(count[std::size_t(r)] * std::size_t(width));
-      if (count[std::size_t(r)] == 0) continue;
-      if (r == 0)
-        mine.rows(first[0], count[0], buffer.data());
-      else
-        buffer = request_rows(r, first[std::size_t(r)], count[std::size_t(r)], comm);
-    }
-    failure.attempt([&] {
-      block.resize(n * std::size_t(width));
-      for (std::size_t i = 0; i < n; ++i) {
-        const auto [r, row] = sources[i];
-        const auto& buffer = rows[std::size_t(r)];
-        SHELLFRAC_REQUIRE(buffer.size() == count[std::size_t(r)] * std::size_t(width),
-                          "checkpoint table " << name << ": rank " << r << " sent " << buffer.size() << " values");
-        std::copy_n(buffer.data() + (row - first[std::size_t(r)]) * std::size_t(width), width,
-                    block.data() + i * std::size_t(width));
-      }
-      writer->write_rows(block.data(), n);
-    });
-  }
-  for (int r = 1; r < np; ++r) end_row_requests(r, comm);
-}
-
-/// Collective: rank 0 opens the file; every rank gets its scalars, strings and table names.
-std::unique_ptr<CheckpointFileReader> open_and_share_header(const std::string& path, CheckpointData& d,
-                                                            std::vector<std::string>& names, MPI_Comm comm) {
-  const int me = parallel::rank(comm);
-  std::unique_ptr<CheckpointFileReader> reader;
-  parallel::on_root_then_agree(
-      [&] {
-        reader = std::make_unique<CheckpointFileReader>(path);
-        d.scalars = reader->header().scalars, d.strings = reader->header().strings;
-        names = reader->table_names();
-      },
-      0, comm);
-  parallel::ByteWriter w;
-  if (me == 0) {
-    w = serialize_header(d, names.size());
-    for (const auto& n : names) w.put_string(n);
-  }
-  parallel::broadcast(w.buffer(), 0, comm);
-  if (me != 0) {
-    parallel::ByteReader r(w.buffer());
-    for (auto n = deserialize_header(r, d); n > 0; --n) names.push_back(r.get_string());
-  }
-  return reader;
-}
-
-/// Collective: the ids of table `name` each rank asks for (sorted, unique; gathered on rank 0, empty elsewhere);
-/// `whole` when nobody names the table (it then goes whole to every rank).
-std::vector<std::vector<GlobalId>> gather_asked_ids(const std::string& path, const std::string& name,
-                                                    const WantedRows& wanted, bool& whole, MPI_Comm comm) {
-  const int me = parallel::rank(comm), np = parallel::size(comm);
-  const std::vector<GlobalId>* ask = wanted(name);
-  whole = ask == nullptr;
-  std::vector<GlobalId> mine_asked;
-  if (!whole) {
-    mine_asked = *ask;
-    std::sort(mine_asked.begin(), mine_asked.end());
-    mine_asked.erase(std::unique(mine_asked.begin(), mine_asked.end()), mine_asked.end());
-  }
-  SHELLFRAC_REQUIRE(!(parallel::any(whole, comm) && parallel::any(!whole, comm)),
-                    "checkpoint " << path << ": table " << name << " is asked for by some ranks only");
-  std::vector<std::vector<GlobalId>> asked(static_cast<std::size_t>(np));
-  if (whole) return asked;
-  if (me == 0) {
-    asked[0] = std::move(mine_asked);
-    for (int r = 1; r < np; ++r) asked[std::size_t(r)] = receive_vector<std::int64_t>(r, comm);
-  } else {
-    send_vector(mine_asked, 0, comm);
-  }
-  return asked;
-}
-
-/// Rank 0: sends each rank its asked rows of one block (ids [begin, end) with values `block`) and returns its own.
-/// `cursor` is each rank's position in its asked ids (both sorted: one pass over each).
-CheckpointTable share_asked_rows(std::vector<GlobalId>::const_iterator begin, std::vector<GlobalId>::const_iterator end,
-                                 const std::vector<double>& block, std::size_t width,
-                                 const std::vector<std::vector<GlobalId>>& asked, std::vector<std::size_t>& cursor,
-                                 MPI_Comm comm) {
-  CheckpointTable own;
-  own.width = static_cast<int>(width);
-  for (int r = 0; r < static_cast<int>(asked.size()); ++r) {
-    const auto& want = asked[std::size_t(r)];
-    std::size_t& c = cursor[std::size_t(r)];
-    std::vector<GlobalId> out_ids;
-    std::vector<double> out_values;
-    auto at = begin;
-    for (; c < want.size() && want[c] <= *(end - 1); ++c) {
-      at = std::lower_bound(at, end, want[c]);
-      if (at == end || *at != want[c]) continue;  // not in the file
-      const std::size_t row = std::size_t(at - begin);
-      out_ids.push_back(want[c]);
-      out_values.insert(out_values.end(), block.begin() + std::ptrdiff_t(row * width),
-                        block.begin() + std::ptrdiff_t((row + 1) * width));
-    }
-    if (r == 0)
-      own.ids = std::move(out_ids), own.values = std::move(out_values);
-    else
-      send_vector(out_ids, r, comm), send_vector(out_values, r, comm);
-  }
-  return own;
-}
-
-}  // namespace
-
-// Rank 0 writes, one table at a time and a block of checkpoint_rows_per_block rows at a time: it gathers every rank's ids of the
-// table, merges them (sorted, a row given by two ranks taken from the lower), writes them, then asks each rank for
-// the rows of each block and writes the block. No rank ever holds a table: rank 0 holds the ids and one block,
-// the others build the rows of a block when asked. An error on rank 0 is raised on every rank after the last table.
+// Every rank writes, one table at a time and about a block of checkpoint_rows_per_block rows a round: the rows
+// with ids in its share of the table's id range, sent to it by the ranks that give them (merged, sorted, a row
+// given by two ranks taken from the lower), at the file rows the ids before its share take. No rank ever holds
+// more than its own rows and a round's; rank 0 does what the others do, plus the header's attributes.
 void write_checkpoint(const std::string& path, const CheckpointData& local, MPI_Comm comm) {
-  const int me = parallel::rank(comm);
   const auto names = agreed_table_names(local, comm);
-  RootError failure;
-  failure.me = me;
-  std::unique_ptr<CheckpointFileWriter> writer;
-  failure.attempt([&] { writer = std::make_unique<CheckpointFileWriter>(path, local, names.size()); });
-  for (const auto& name : names) {
-    const LocalRows mine = local_rows(local, name);
-    const int width = static_cast<int>(parallel::max(double(mine.width), comm));
-    if (me == 0) {
-      write_table_on_root(name, mine, width, writer.get(), failure, comm);
-      continue;
-    }
-    send_vector(std::vector<std::int64_t>{mine.width}, 0, comm), send_vector(mine.ids, 0, comm);
-    serve_row_requests(mine, comm);
-  }
-  failure.attempt([&] { writer->finish(); });
-  writer.reset();
-  failure.raise_everywhere(comm);
+  CheckpointData header;  // rank 0's scalars and strings, on every rank
+  parallel::ByteWriter w;
+  if (parallel::rank(comm) == 0) w = serialize_header(local, names.size());
+  parallel::broadcast(w.buffer(), 0, comm);
+  parallel::ByteReader r(w.buffer());
+  deserialize_header(r, header);
+  CheckpointFileWriter writer(path, header, names.size(), comm);
+  for (const auto& name : names) write_table(name, local, writer, comm);
+  writer.finish();
 }
 
-// Rank 0 reads one table at a time, a block of checkpoint_rows_per_block rows at a time, and sends every rank the rows of each
-// block that it asks for (`wanted`; a table not asked for goes whole to every rank): no rank but rank 0 ever sees a
-// row it did not ask for, and each rank holds one table of its rows at a time.
+// Every rank reads its P-th of each table, a block at a time, and sends the ranks the rows they ask for
+// (`wanted`; a table not asked for goes whole to every rank, a block at a time in file order): each rank holds its
+// asked rows of one round at a time, and the rows it reads.
 void read_checkpoint(const std::string& path, MPI_Comm comm, const WantedRows& wanted,
                      const std::function<void(const CheckpointData& header)>& header,
                      const std::function<void(const std::string& name, const CheckpointTable& rows)>& table) {
   const int me = parallel::rank(comm), np = parallel::size(comm);
-  CheckpointData d;
-  std::vector<std::string> names;
-  const std::unique_ptr<CheckpointFileReader> reader = open_and_share_header(path, d, names, comm);
-  header(d);
-  for (const auto& name : names) {
+  CheckpointFileReader reader(path, comm);
+  header(reader.header());
+  std::vector<GlobalId> piece_ids;
+  std::vector<double> piece_values;
+  for (const auto& name : reader.table_names()) {
     bool whole = false;
-    const std::vector<std::vector<GlobalId>> asked = gather_asked_ids(path, name, wanted, whole, comm);
-    CheckpointTable ids;  // rank 0: the file's ids and width
-    parallel::on_root_then_agree([&] { ids = reader->begin_table(name); }, 0, comm);
-    std::int64_t shape[2] = {ids.width, std::int64_t(ids.ids.size())};
-    MPI_Bcast(shape, 2, MPI_INT64_T, 0, comm);
-    CheckpointTable rows;  // this rank's rows of a block
-    rows.width = static_cast<int>(shape[0]);
-    const std::size_t num_rows = std::size_t(shape[1]), width = std::size_t(shape[0]);
-    std::vector<std::size_t> cursor(static_cast<std::size_t>(np), 0);
-    std::vector<double> block;
-    std::vector<GlobalId> block_ids;
-    for (std::size_t first = 0; first < num_rows; first += checkpoint_rows_per_block) {
-      const std::size_t n = std::min(checkpoint_rows_per_block, num_rows - first);
-      if (me == 0 || whole) block.resize(n * width);  // the other ranks get only their rows of a wanted table
-      parallel::on_root_then_agree([&] { reader->read_rows(n, block.data()); }, 0, comm);
-      rows.ids.clear(), rows.values.clear();
-      if (whole) {  // every rank gets the block
-        block_ids.assign(n, 0);
-        if (me == 0) std::copy_n(ids.ids.begin() + std::ptrdiff_t(first), n, block_ids.begin());
-        SHELLFRAC_REQUIRE(MPI_Bcast(block_ids.data(), int(n), MPI_INT64_T, 0, comm) == MPI_SUCCESS &&
-                              MPI_Bcast(block.data(), int(n * width), MPI_DOUBLE, 0, comm) == MPI_SUCCESS,
-                          "checkpoint: broadcast of table " << name << " failed");
-        rows.ids = block_ids, rows.values = block;
-      } else if (me != 0) {  // this rank's rows of the block
-        rows.ids = receive_vector<std::int64_t>(0, comm);
-        rows.values = receive_vector<double>(0, comm);
+    const std::vector<GlobalId> asked = asked_ids(path, name, wanted, whole, comm);
+    int width = 0;
+    std::size_t num_rows = 0;
+    reader.begin_table(name, width, num_rows);
+    const ReadPieces pieces(num_rows, np, whole);
+    for (std::size_t k = 0; k < pieces.rounds; ++k) {
+      const auto [first, end] = pieces.piece(me, k);
+      reader.read_rows(first, end - first, piece_ids, piece_values);
+      CheckpointTable rows;
+      rows.width = width;
+      if (whole) {
+        rows.ids = parallel::all_gather(piece_ids, comm);
+        rows.values = parallel::all_gather(piece_values, comm);
       } else {
-        const auto begin = ids.ids.cbegin() + std::ptrdiff_t(first);
-        rows = share_asked_rows(begin, begin + std::ptrdiff_t(n), block, width, asked, cursor, comm);
+        rows = share_asked_rows(piece_ids, piece_values, width, asked, comm);
       }
       table(name, rows);
     }
-    if (num_rows == 0) table(name, rows);  // an empty table is still one
   }
-  parallel::on_root_then_agree([&] { reader->verify(); }, 0, comm);
+  reader.verify();
 }
-
 CheckpointData read_checkpoint(const std::string& path, MPI_Comm comm,
                                const std::map<std::string, std::vector<GlobalId>>& wanted) {
   CheckpointData d;
@@ -461,6 +363,19 @@ CheckpointData read_checkpoint(const std::string& path, MPI_Comm comm,
         t.ids.insert(t.ids.end(), rows.ids.begin(), rows.ids.end());
         t.values.insert(t.values.end(), rows.values.begin(), rows.values.end());
       });
+  for (auto& [name, t] : d.tables) {  // the rounds of a table asked for by rows interleave in id: sorted here
+    std::vector<std::size_t> order(t.ids.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return t.ids[a] < t.ids[b]; });
+    CheckpointTable sorted;
+    sorted.width = t.width;
+    for (const std::size_t i : order) {
+      sorted.ids.push_back(t.ids[i]);
+      sorted.values.insert(sorted.values.end(), t.values.begin() + std::ptrdiff_t(i * std::size_t(t.width)),
+                           t.values.begin() + std::ptrdiff_t((i + 1) * std::size_t(t.width)));
+    }
+    t = std::move(sorted);
+  }
   return d;
 }
 
