@@ -132,6 +132,39 @@ std::vector<double> all_to_all(const std::vector<std::vector<double>>& send, MPI
   return incoming;
 }
 
+void exchange_bytes(const char* out, const std::vector<std::size_t>& send_bytes,
+                    const std::function<char*(std::size_t)>& allocate, std::vector<std::size_t>& received_bytes,
+                    MPI_Comm comm) {
+  const int P = size(comm);
+  SHELLFRAC_REQUIRE(int(send_bytes.size()) == P, "exchange: " << send_bytes.size() << " send vectors for " << P << " ranks");
+  constexpr std::size_t limit = 2147483647u;
+  std::vector<int> send_count(static_cast<std::size_t>(P)), receive_count(static_cast<std::size_t>(P));
+  std::vector<int> send_offset(static_cast<std::size_t>(P), 0), receive_offset(static_cast<std::size_t>(P), 0);
+  std::size_t sent = 0;
+  for (std::size_t q = 0; q < std::size_t(P); ++q) {
+    send_offset[q] = static_cast<int>(sent);
+    send_count[q] = static_cast<int>(send_bytes[q]);
+    sent += send_bytes[q];
+  }
+  const bool too_many_sent = sent > limit;
+  MPI_Alltoall(send_count.data(), 1, MPI_INT, receive_count.data(), 1, MPI_INT, comm);
+  std::size_t received = 0;
+  for (std::size_t q = 0; q < std::size_t(P); ++q) {
+    receive_offset[q] = static_cast<int>(std::min(received, limit));
+    received += std::size_t(receive_count[q]);
+  }
+  SHELLFRAC_REQUIRE(!any(too_many_sent || received > limit, comm),
+                    "exchange: more than 2^31 - 1 bytes to or from one rank in one exchange");
+  char* in = allocate(received);
+  char dummy_out = 0, dummy_in = 0;
+  SHELLFRAC_REQUIRE(MPI_Alltoallv(sent > 0 ? out : &dummy_out, send_count.data(), send_offset.data(), MPI_BYTE,
+                                  received > 0 ? in : &dummy_in, receive_count.data(), receive_offset.data(), MPI_BYTE,
+                                  comm) == MPI_SUCCESS,
+                    "exchange: MPI_Alltoallv failed");
+  received_bytes.assign(std::size_t(P), 0);
+  for (std::size_t q = 0; q < std::size_t(P); ++q) received_bytes[q] = std::size_t(receive_count[q]);
+}
+
 template <class T>
 std::vector<T> all_gather(const std::vector<T>& local, MPI_Comm comm) {
   static_assert(std::is_trivially_copyable_v<T>);

@@ -105,9 +105,45 @@ double max(double local, MPI_Comm comm = MPI_COMM_WORLD);
 /// Sends send[q] to rank q (one vector per rank) and returns what every rank sent here, concatenated in rank order.
 /// Collective.
 std::vector<double> all_to_all(const std::vector<std::vector<double>>& send, MPI_Comm comm = MPI_COMM_WORLD);
+/// Sends send[q] to rank q (one vector per rank) and returns what every rank sent here, concatenated in rank order;
+/// counts[q] is the number of values that came from rank q. T is trivially copyable and goes as bytes (at most
+/// 2^31 - 1 bytes to and from a rank in one call: Error otherwise). Collective.
+template <class T>
+std::vector<T> exchange(const std::vector<std::vector<T>>& send, std::vector<int>& counts,
+                        MPI_Comm comm = MPI_COMM_WORLD);
+/// exchange() on bytes: `out` holds the bytes for rank 0, then rank 1, ...: send_bytes[q] of them for rank q;
+/// `allocate(total)` returns room for the total received, filled rank by rank; received_bytes[q] from rank q.
+void exchange_bytes(const char* out, const std::vector<std::size_t>& send_bytes,
+                    const std::function<char*(std::size_t)>& allocate, std::vector<std::size_t>& received_bytes,
+                    MPI_Comm comm);
 /// Gathers a variable-length vector of T from every rank onto every rank (rank order). Collective.
 template <class T>
 std::vector<T> all_gather(const std::vector<T>& local, MPI_Comm comm = MPI_COMM_WORLD);
+
+template <class T>
+std::vector<T> exchange(const std::vector<std::vector<T>>& send, std::vector<int>& counts, MPI_Comm comm) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  std::vector<T> out;
+  std::vector<std::size_t> send_bytes(send.size()), received_bytes;
+  std::size_t total = 0;
+  for (const auto& v : send) total += v.size();
+  out.reserve(total);
+  for (std::size_t q = 0; q < send.size(); ++q) {
+    out.insert(out.end(), send[q].begin(), send[q].end());
+    send_bytes[q] = send[q].size() * sizeof(T);
+  }
+  std::vector<T> in;
+  exchange_bytes(
+      reinterpret_cast<const char*>(out.data()), send_bytes,
+      [&in](std::size_t bytes) {
+        in.resize(bytes / sizeof(T));
+        return reinterpret_cast<char*>(in.data());
+      },
+      received_bytes, comm);
+  counts.assign(received_bytes.size(), 0);
+  for (std::size_t q = 0; q < received_bytes.size(); ++q) counts[q] = static_cast<int>(received_bytes[q] / sizeof(T));
+  return in;
+}
 
 /// The peak resident memory of each rank so far [bytes] (getrusage), in rank order, on every rank. Collective.
 std::vector<double> peak_resident_bytes(MPI_Comm comm = MPI_COMM_WORLD);

@@ -137,29 +137,43 @@ SerialMesh make_cylinder(double r, double l, int n_axial, int n_circ, DiagonalPa
   return m;
 }
 
+bool vertex_normal_term(int nodes_per_element, const Vec3* x, int a, Vec3& term) {
+  const int order = nodes_per_element == 6 ? 2 : 1;
+  double N[6], dN[6][2];
+  shape(order, p2_node_xi[a][0], p2_node_xi[a][1], N, dN);
+  Vec3 g1{0, 0, 0}, g2{0, 0, 0};
+  for (int b = 0; b < nodes_per_element; ++b) {
+    g1 = add(g1, scale(dN[b][0], x[b]));
+    g2 = add(g2, scale(dN[b][1], x[b]));
+  }
+  const Vec3 c = cross(g1, g2);
+  const double len = norm(c);
+  if (!(len > 0)) return false;
+  term = scale(1.0 / len, c);
+  return true;
+}
+
+Vec3 unit_or_zero(const Vec3& v) {
+  const double len = norm(v);
+  return len > 0 ? scale(1.0 / len, v) : v;
+}
+
 std::vector<Vec3> reference_vertex_normals(const SerialMesh& mesh) {
   std::vector<Vec3> n(mesh.coords.size(), Vec3{0, 0, 0});
-  const int npe = mesh.nodes_per_element, order = npe == 6 ? 2 : 1;
+  const int npe = mesh.nodes_per_element;
   // Accumulate in element order (deterministic), then normalize.
-  for (GlobalId e = 0; e < mesh.num_elements(); ++e)
+  for (GlobalId e = 0; e < mesh.num_elements(); ++e) {
+    Vec3 x[6];
+    for (int b = 0; b < npe; ++b) x[b] = mesh.coords[mesh.node(e, b)];
     for (int a = 0; a < 3; ++a) {
-      double N[6], dN[6][2];
-      shape(order, p2_node_xi[a][0], p2_node_xi[a][1], N, dN);
-      Vec3 g1{0, 0, 0}, g2{0, 0, 0};
-      for (int b = 0; b < npe; ++b) {
-        g1 = add(g1, scale(dN[b][0], mesh.coords[mesh.node(e, b)]));
-        g2 = add(g2, scale(dN[b][1], mesh.coords[mesh.node(e, b)]));
-      }
-      const Vec3 c = cross(g1, g2);
-      const double len = norm(c);
-      SHELLFRAC_INPUT_REQUIRE(len > 0, mesh.source << ": element " << e + 1 << " has a zero Jacobian at vertex " << a + 1);
-      GlobalId v = mesh.node(e, a);
-      n[v] = add(n[v], scale(1.0 / len, c));
+      Vec3 term;
+      SHELLFRAC_INPUT_REQUIRE(vertex_normal_term(npe, x, a, term),
+                              mesh.source << ": element " << e + 1 << " has a zero Jacobian at vertex " << a + 1);
+      const GlobalId v = mesh.node(e, a);
+      n[v] = add(n[v], term);
     }
-  for (auto& v : n) {
-    const double len = norm(v);
-    if (len > 0) v = scale(1.0 / len, v);
   }
+  for (auto& v : n) v = unit_or_zero(v);
   return n;
 }
 

@@ -38,5 +38,10 @@ SerialMesh make_cylinder(double r, double l, int n_axial, int n_circ, DiagonalPa
 /// vertex, the normalized sum over the elements that use it of the element's unit normal at that vertex
 /// (P2 geometry if TRI6). Entries of non-vertex (mid-side) nodes are zero.
 std::vector<Vec3> reference_vertex_normals(const SerialMesh& mesh);
+/// One element's term of that sum: its unit normal at vertex a (0..2) from its node coordinates x[0..npe) (P2
+/// geometry if TRI6). False for a zero Jacobian there.
+bool vertex_normal_term(int nodes_per_element, const Vec3* x, int a, Vec3& term);
+/// v / |v|, or v itself when it is zero (the last step of the average).
+Vec3 unit_or_zero(const Vec3& v);
 
 }  // namespace shellfrac::mesh
