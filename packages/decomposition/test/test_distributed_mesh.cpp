@@ -4,6 +4,7 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <set>
@@ -13,7 +14,9 @@
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
+#include "shellfrac/decomposition/distributed_topology.hpp"
 #include "shellfrac/decomposition/element_maps.hpp"
+#include "shellfrac/decomposition/element_migration.hpp"
 #include "shellfrac/decomposition/partitioner.hpp"
 #include "shellfrac/mesh/edge_topology.hpp"
 #include "shellfrac/mesh/generators.hpp"
@@ -327,6 +330,101 @@ TEST(DistributedMesh, RejectsBadPartition) {
   EXPECT_THROW(DistributedMesh(c.mesh, c.topo, bad), Error);
   bad.pop_back();  // wrong length
   EXPECT_THROW(DistributedMesh(c.mesh, c.topo, bad), Error);
+}
+
+/// This rank's piece of c's mesh when the elements are spread over the ranks in blocks or round robin.
+decomposition::ElementPiece piece_of(const Case& c, bool round_robin) {
+  const int me = parallel::rank(), P = parallel::size();
+  const GlobalId ne = c.mesh.num_elements();
+  decomposition::ElementPiece piece;
+  piece.nodes_per_element = c.mesh.nodes_per_element;
+  piece.source = c.name;
+  for (GlobalId e = 0; e < ne; ++e) {
+    if ((round_robin ? int(e % P) : int(e * P / ne)) != me) continue;
+    piece.elements.push_back(e);
+    piece.blocks.push_back(c.mesh.element_block[std::size_t(e)]);
+    for (int a = 0; a < c.mesh.nodes_per_element; ++a)
+      piece.nodes.push_back(c.mesh.node(e, a)), piece.coords.push_back(c.mesh.coords[std::size_t(c.mesh.node(e, a))]);
+  }
+  for (std::size_t s = 0; s < c.mesh.side_sets.size(); ++s)
+    for (std::size_t i = 0; i < c.mesh.side_sets[s].elements.size(); ++i) {
+      const GlobalId e = c.mesh.side_sets[s].elements[i];
+      if (std::binary_search(piece.elements.begin(), piece.elements.end(), e))
+        piece.side_entries.push_back({e, c.mesh.side_sets[s].local_edges[i], int(s)});
+    }
+  return piece;
+}
+
+/// Every accessor of the two views, and the Imports' rows, compared (coordinates and directors bitwise).
+void expect_same_view(const DistributedMesh& a, const DistributedMesh& b, const std::string& what) {
+  ASSERT_EQ(a.num_owned(), b.num_owned()) << what;
+  ASSERT_EQ(a.element_gids(), b.element_gids()) << what;
+  EXPECT_EQ(a.num_global_elements(), b.num_global_elements()) << what;
+  EXPECT_EQ(a.element_blocks(), b.element_blocks()) << what;
+  EXPECT_EQ(a.neighbors(), b.neighbors()) << what;
+  EXPECT_EQ(a.neighbor_edges(), b.neighbor_edges()) << what;
+  for (LocalId le = 0; le < a.num_overlap(); ++le) {
+    EXPECT_EQ(a.element_owner(le), b.element_owner(le)) << what;
+    for (int n = 0; n < a.nodes_per_element(); ++n) {
+      EXPECT_EQ(a.mesh_node(le, n), b.mesh_node(le, n)) << what;
+      EXPECT_EQ(a.node_coords(le, n), b.node_coords(le, n)) << what;
+    }
+    for (int v = 0; v < 3; ++v) EXPECT_EQ(a.reference_director(le, v), b.reference_director(le, v)) << what;
+  }
+  ASSERT_EQ(a.interfaces().size(), b.interfaces().size()) << what;
+  for (std::size_t i = 0; i < a.interfaces().size(); ++i) {
+    const auto &x = a.interfaces()[i], &y = b.interfaces()[i];
+    EXPECT_TRUE(x.gid == y.gid && x.minus == y.minus && x.plus == y.plus && x.minus_edge == y.minus_edge &&
+                x.plus_edge == y.plus_edge && x.owned == y.owned && x.non_manifold == y.non_manifold)
+        << what << " interface " << x.gid;
+  }
+  ASSERT_EQ(a.boundary_edges().size(), b.boundary_edges().size()) << what;
+  for (std::size_t i = 0; i < a.boundary_edges().size(); ++i) {
+    const auto &x = a.boundary_edges()[i], &y = b.boundary_edges()[i];
+    EXPECT_TRUE(x.element == y.element && x.local_edge == y.local_edge && x.side_sets == y.side_sets) << what << i;
+  }
+  EXPECT_EQ(a.maps().send_rows, b.maps().send_rows) << what;
+}
+
+TEST(DistributedMesh, PiecesOfTheMeshGiveTheViewOfTheWholeMesh) {
+  for (const auto& c : cases())
+    for (const bool round_robin : {false, true}) {
+      const DistributedMesh whole(c.mesh, c.topo, c.part);
+      const auto piece = piece_of(c, round_robin);
+      std::vector<std::array<GlobalId, 3>> vertices;
+      std::vector<int> part;
+      for (const GlobalId e : piece.elements)
+        vertices.push_back({c.mesh.node(e, 0), c.mesh.node(e, 1), c.mesh.node(e, 2)}), part.push_back(c.part[e]);
+      const auto topo = decomposition::build_local_topology(piece.elements, vertices, mesh::NonManifoldPolicy::Star,
+                                                            piece.source, MPI_COMM_WORLD);
+      const DistributedMesh from_pieces(piece, topo, part);
+      expect_same_view(whole, from_pieces, c.name + (round_robin ? " round robin" : " blocks"));
+    }
+}
+
+TEST(DistributedMesh, AnElementGivenByTwoRanksIsAnError) {
+  if (parallel::size() < 2) GTEST_SKIP() << "needs two ranks";
+  const Case c = make_case("two-ranks", mesh::make_rectangle(1.0, 1.0, 2, 1));
+  decomposition::ElementPiece piece;
+  piece.source = "pieces.exo";
+  const GlobalId e = parallel::rank() == 1 ? 0 : parallel::rank();  // ranks 0 and 1 both give element 0
+  if (e < c.mesh.num_elements()) {
+    piece.elements = {e};
+    piece.blocks = {0};
+    for (int a = 0; a < 3; ++a) piece.nodes.push_back(c.mesh.node(e, a)), piece.coords.push_back(c.mesh.coords[c.mesh.node(e, a)]);
+  }
+  std::vector<std::array<GlobalId, 3>> vertices;
+  for (const GlobalId g : piece.elements) vertices.push_back({c.mesh.node(g, 0), c.mesh.node(g, 1), c.mesh.node(g, 2)});
+  const auto topo = decomposition::build_local_topology(piece.elements, vertices, mesh::NonManifoldPolicy::Star,
+                                                        piece.source, MPI_COMM_WORLD);
+  const std::vector<int> part(piece.elements.size(), 0);
+  try {
+    DistributedMesh dm(piece, topo, part);
+    ADD_FAILURE() << "expected InputError";
+  } catch (const InputError& err) {
+    EXPECT_NE(std::string(err.what()).find("pieces.exo: element 1 is given by two ranks"), std::string::npos)
+        << err.what();
+  }
 }
 
 }  // namespace

@@ -103,8 +103,10 @@ void expect_same_topology(const mesh::SerialMesh& m, const std::vector<GlobalId>
         << what << " interface " << ids[j];
   }
   std::vector<mesh::ElementEdge> boundary;
-  for (const auto& b : serial.boundary)
-    if (here(b.element)) boundary.push_back(b);
+  std::vector<GlobalId> boundary_ids;
+  for (std::size_t i = 0; i < serial.boundary.size(); ++i)
+    if (here(serial.boundary[i].element)) boundary.push_back(serial.boundary[i]), boundary_ids.push_back(GlobalId(i));
+  EXPECT_EQ(t.boundary_ids, boundary_ids) << what;
   ASSERT_EQ(t.boundary.size(), boundary.size()) << what;
   for (std::size_t j = 0; j < boundary.size(); ++j) EXPECT_TRUE(t.boundary[j] == boundary[j]) << what << " " << j;
 }

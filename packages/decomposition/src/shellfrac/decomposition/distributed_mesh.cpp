@@ -9,6 +9,7 @@
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/decomposition/element_maps.hpp"
+#include "shellfrac/decomposition/element_migration.hpp"
 #include "shellfrac/mesh/generators.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
 
@@ -191,6 +192,54 @@ DistributedMesh::DistributedMesh(const mesh::SerialMesh& mesh, const mesh::EdgeT
   }
 
   maps_ = make_maps(element_gid_, num_owned_, ne, comm_);
+}
+
+DistributedMesh::DistributedMesh(const ElementPiece& piece, const LocalTopology& topo, const std::vector<int>& part,
+                                 MPI_Comm comm)
+    : comm_(comm) {
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &num_ranks_);
+  MigratedPart m = migrate_elements(piece, topo, part, comm_);
+  npe_ = m.nodes_per_element;
+  num_global_elements_ = m.num_global_elements;
+  num_owned_ = m.num_owned;
+  const std::size_t nov = m.elements.size(), npe = std::size_t(npe_);
+  for (const MigratedElement& r : m.elements) element_gid_.push_back(r.gid);
+  element_owner_.resize(nov);
+  element_block_.resize(nov);
+  coords_.resize(nov * npe);
+  mesh_node_.resize(nov * npe);
+  directors_.resize(nov * num_vertices_tri);
+  neighbor_.assign(nov * 3, -1);
+  neighbor_edge_.assign(nov * 3, -1);
+  for (std::size_t le = 0; le < nov; ++le) {
+    const MigratedElement& r = m.elements[le];
+    element_owner_[le] = r.owner;
+    element_block_[le] = r.block;
+    for (std::size_t a = 0; a < npe; ++a) mesh_node_[le * npe + a] = r.nodes[a], coords_[le * npe + a] = r.coords[a];
+    for (std::size_t k = 0; k < 3; ++k) {
+      directors_[le * 3 + k] = r.directors[k];
+      const LocalId ln = r.neighbor[k].element < 0 ? -1 : local_id(r.neighbor[k].element);
+      if (ln < 0) continue;
+      neighbor_[le * 3 + k] = ln;
+      neighbor_edge_[le * 3 + k] = r.neighbor[k].local_edge;
+    }
+  }
+  for (const MigratedInterface& r : m.interfaces) {
+    const auto& f = r.interface;
+    LocalInterface li;
+    li.gid = r.id;
+    li.minus = local_id(f.minus.element);
+    li.plus = local_id(f.plus.element);
+    li.minus_edge = f.minus.local_edge;
+    li.plus_edge = f.plus.local_edge;
+    li.owned = std::min(r.minus_owner, r.plus_owner) == rank_;
+    li.non_manifold = f.non_manifold;
+    SHELLFRAC_REQUIRE(li.minus >= 0 && li.plus >= 0, "DistributedMesh: interface " << r.id << " side not in the overlap");
+    interfaces_.push_back(li);
+  }
+  for (MigratedBoundary& b : m.boundary) boundary_.push_back({local_id(b.side.element), b.side.local_edge, std::move(b.side_sets)});
+  maps_ = make_maps(element_gid_, num_owned_, num_global_elements_, comm_);
 }
 
 DistributedMesh::~DistributedMesh() = default;

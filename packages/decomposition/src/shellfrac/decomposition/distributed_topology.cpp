@@ -200,7 +200,7 @@ LocalTopology build_local_topology(const std::vector<GlobalId>& elements,
   for (const auto& r : interfaces) t.interface_ids.push_back(r.id), t.interfaces.push_back(r.interface);
   auto boundary = parallel::exchange(home.boundary, counts, comm);
   std::sort(boundary.begin(), boundary.end(), [](const auto& x, const auto& y) { return x.id < y.id; });
-  for (const auto& r : boundary) t.boundary.push_back(r.side);
+  for (const auto& r : boundary) t.boundary_ids.push_back(r.id), t.boundary.push_back(r.side);
   std::array<GlobalId, 4> here{home.counts[0], home.counts[1], home.counts[2], home.non_manifold}, all{};
   SHELLFRAC_REQUIRE(MPI_Allreduce(here.data(), all.data(), 4, MPI_INT64_T, MPI_SUM, comm) == MPI_SUCCESS,
                     "build_local_topology: MPI_Allreduce of the counts failed");

@@ -32,7 +32,9 @@ struct LocalTopology {
   /// interfaces[i] in EdgeTopology::interfaces).
   std::vector<GlobalId> interface_ids;
   std::vector<mesh::Interface> interfaces;
-  /// The boundary entries of this rank's elements, in the order of EdgeTopology::boundary.
+  /// The boundary entries of this rank's elements, in the order of EdgeTopology::boundary (boundary_ids[i]: the
+  /// index of boundary[i] there).
+  std::vector<GlobalId> boundary_ids;
   std::vector<mesh::ElementEdge> boundary;
   /// Of the whole mesh.
   GlobalId num_edges = 0, num_interfaces = 0, num_boundary = 0, num_non_manifold_edges = 0;

@@ -1,0 +1,218 @@
+#include "shellfrac/decomposition/element_migration.hpp"
+
+#include <algorithm>
+#include <tuple>
+#include <utility>
+
+#include "shellfrac/core/error.hpp"
+#include "shellfrac/core/parallel.hpp"
+
+namespace shellfrac::decomposition {
+
+namespace {
+
+/// (global id, value) pairs sorted by id, looked up by id.
+struct SortedPairs {
+  std::vector<std::pair<GlobalId, int>> pairs;
+  void sort() { std::sort(pairs.begin(), pairs.end()); }
+  /// The value of id, -1 if absent.
+  int find(GlobalId id) const {
+    const auto it = std::lower_bound(pairs.begin(), pairs.end(), std::pair<GlobalId, int>{id, -1});
+    return it != pairs.end() && it->first == id ? it->second : -1;
+  }
+};
+
+/// The ranks' shares of the element ids, each keeping the parts of its share: rank q holds [q width, (q+1) width).
+class PartDirectory {
+ public:
+  /// Registers the parts of the piece's elements. Collective.
+  PartDirectory(const ElementPiece& piece, const std::vector<int>& part, GlobalId num_elements, MPI_Comm comm)
+      : comm_(comm), P_(parallel::size(comm)) {
+    width_ = std::max<GlobalId>(1, (num_elements + P_ - 1) / P_);
+    const GlobalId first = width_ * parallel::rank(comm);
+    parts_.assign(std::size_t(std::max<GlobalId>(0, std::min(width_, num_elements - first))), -1);
+    struct ElementPart {
+      GlobalId gid;
+      int part;
+    };
+    std::vector<std::vector<ElementPart>> send(static_cast<std::size_t>(P_));
+    for (std::size_t i = 0; i < piece.elements.size(); ++i)
+      send[std::size_t(home(piece.elements[i]))].push_back({piece.elements[i], part[i]});
+    std::vector<int> counts;
+    const auto given = parallel::exchange(send, counts, comm);
+    parallel::on_all_then_agree(
+        [&] {
+          for (const ElementPart& g : given) {
+            int& slot = parts_[std::size_t(g.gid - first)];
+            SHELLFRAC_INPUT_REQUIRE(slot < 0, piece.source << ": element " << g.gid + 1 << " is given by two ranks");
+            slot = g.part;
+          }
+        },
+        comm);
+  }
+  /// The parts of `ids` (any rank's ids, in any order). Collective.
+  std::vector<int> parts_of(const std::vector<GlobalId>& ids) const {
+    std::vector<std::vector<GlobalId>> asked(static_cast<std::size_t>(P_));
+    for (const GlobalId id : ids) asked[std::size_t(home(id))].push_back(id);
+    std::vector<int> counts;
+    const auto questions = parallel::exchange(asked, counts, comm_);
+    std::vector<std::vector<int>> answers(static_cast<std::size_t>(P_));
+    const GlobalId first = width_ * parallel::rank(comm_);
+    std::size_t k = 0;
+    for (int q = 0; q < P_; ++q)
+      for (int j = 0; j < counts[std::size_t(q)]; ++j, ++k)
+        answers[std::size_t(q)].push_back(parts_[std::size_t(questions[k] - first)]);
+    const auto replies = parallel::exchange(answers, counts, comm_);
+    // The replies come in the order of the questions, rank by rank.
+    std::vector<std::size_t> next(static_cast<std::size_t>(P_), 0), start(static_cast<std::size_t>(P_), 0);
+    for (int q = 1; q < P_; ++q) start[std::size_t(q)] = start[std::size_t(q - 1)] + asked[std::size_t(q - 1)].size();
+    std::vector<int> out;
+    out.reserve(ids.size());
+    for (const GlobalId id : ids) {
+      const std::size_t q = std::size_t(home(id));
+      out.push_back(replies[start[q] + next[q]++]);
+    }
+    return out;
+  }
+
+ private:
+  int home(GlobalId id) const { return static_cast<int>(std::min<GlobalId>(id / width_, P_ - 1)); }
+  MPI_Comm comm_;
+  int P_;
+  GlobalId width_ = 1;
+  std::vector<int> parts_;
+};
+
+/// Checks the piece on every rank (InputError on all ranks for any problem); returns the number of elements.
+GlobalId checked_size(const ElementPiece& piece, const std::vector<int>& part, MPI_Comm comm) {
+  const GlobalId n = parallel::sum(GlobalId(piece.elements.size()), comm);
+  const int P = parallel::size(comm);
+  int npe[2] = {-piece.nodes_per_element, piece.nodes_per_element}, extreme[2] = {0, 0};
+  MPI_Allreduce(npe, extreme, 2, MPI_INT, MPI_MAX, comm);
+  parallel::on_all_then_agree(
+      [&] {
+        SHELLFRAC_REQUIRE(-extreme[0] == extreme[1] && (extreme[1] == num_nodes_tri3 || extreme[1] == num_nodes_tri6),
+                          piece.source << ": the ranks' pieces have " << -extreme[0] << " to " << extreme[1]
+                                       << " nodes per element (3 or 6 on every rank)");
+        const std::size_t m = piece.elements.size(), npe_here = std::size_t(piece.nodes_per_element);
+        SHELLFRAC_REQUIRE(part.size() == m && piece.blocks.size() == m && piece.nodes.size() == m * npe_here &&
+                              piece.coords.size() == m * npe_here,
+                          piece.source << ": a piece of " << m << " elements with " << part.size() << " parts, "
+                                       << piece.blocks.size() << " blocks, " << piece.nodes.size() << " nodes");
+        for (std::size_t i = 0; i < m; ++i) {
+          SHELLFRAC_INPUT_REQUIRE(piece.elements[i] >= 0 && piece.elements[i] < n,
+                                  piece.source << ": element id " << piece.elements[i] + 1 << " is not in 1.." << n);
+          SHELLFRAC_REQUIRE(part[i] >= 0 && part[i] < P,
+                            piece.source << ": element " << piece.elements[i] + 1 << " has part " << part[i]
+                                         << ", not a rank in [0, " << P << ")");
+        }
+      },
+      comm);
+  return n;
+}
+
+}  // namespace
+
+MigratedPart migrate_elements(const ElementPiece& piece, const LocalTopology& topo, const std::vector<int>& part,
+                              MPI_Comm comm) {
+  const GlobalId num_elements = checked_size(piece, part, comm);
+  const int me = parallel::rank(comm), P = parallel::size(comm);
+  const std::size_t npe = std::size_t(piece.nodes_per_element);
+  SortedPairs here;  // the piece's elements: id -> index
+  for (std::size_t i = 0; i < piece.elements.size(); ++i) here.pairs.push_back({piece.elements[i], int(i)});
+  here.sort();
+  const PartDirectory directory(piece, part, num_elements, comm);
+  std::vector<GlobalId> others;  // the far sides of the piece's interfaces that other ranks hold
+  for (const auto& f : topo.interfaces)
+    for (const GlobalId e : {f.minus.element, f.plus.element})
+      if (here.find(e) < 0) others.push_back(e);
+  std::sort(others.begin(), others.end());
+  others.erase(std::unique(others.begin(), others.end()), others.end());
+  SortedPairs far;
+  const std::vector<int> far_parts = directory.parts_of(others);
+  for (std::size_t i = 0; i < others.size(); ++i) far.pairs.push_back({others[i], far_parts[i]});
+  const auto part_of = [&](GlobalId e) {
+    const int i = here.find(e);
+    return i >= 0 ? part[std::size_t(i)] : far.find(e);
+  };
+
+  // Every element goes to its owner and to each rank that owns an element across one of its interfaces.
+  std::vector<std::pair<int, int>> destinations;  // (element index, rank)
+  for (std::size_t i = 0; i < piece.elements.size(); ++i) destinations.push_back({int(i), part[i]});
+  for (const auto& f : topo.interfaces) {
+    const int m = here.find(f.minus.element), p = here.find(f.plus.element);
+    if (m >= 0) destinations.push_back({m, part_of(f.plus.element)});
+    if (p >= 0) destinations.push_back({p, part_of(f.minus.element)});
+  }
+  std::sort(destinations.begin(), destinations.end());
+  destinations.erase(std::unique(destinations.begin(), destinations.end()), destinations.end());
+  const std::vector<Vec3> directors =
+      local_vertex_normals(piece.elements, piece.nodes_per_element, piece.nodes, piece.coords, piece.source, comm);
+  std::vector<std::vector<MigratedElement>> elements(static_cast<std::size_t>(P));
+  for (const auto& [i, rank] : destinations) {
+    const std::size_t e = std::size_t(i);
+    MigratedElement r;
+    r.gid = piece.elements[e];
+    r.owner = part[e];
+    r.block = piece.blocks[e];
+    for (std::size_t a = 0; a < npe; ++a) r.nodes[a] = piece.nodes[e * npe + a], r.coords[a] = piece.coords[e * npe + a];
+    for (std::size_t a = 0; a < 3; ++a) r.directors[a] = directors[3 * e + a], r.neighbor[a] = topo.neighbor[e][a];
+    elements[std::size_t(rank)].push_back(r);
+  }
+  // An interface goes from the rank that holds its minus side to the owners of its two sides.
+  std::vector<std::vector<MigratedInterface>> interfaces(static_cast<std::size_t>(P));
+  for (std::size_t j = 0; j < topo.interfaces.size(); ++j) {
+    const auto& f = topo.interfaces[j];
+    if (here.find(f.minus.element) < 0) continue;
+    const MigratedInterface r{topo.interface_ids[j], f, part_of(f.minus.element), part_of(f.plus.element)};
+    interfaces[std::size_t(r.minus_owner)].push_back(r);
+    if (r.plus_owner != r.minus_owner) interfaces[std::size_t(r.plus_owner)].push_back(r);
+  }
+  // A boundary entry goes to its element's owner, with the side sets that name it (as (id, side set) pairs).
+  std::vector<SideEntry> sides = piece.side_entries;
+  std::sort(sides.begin(), sides.end(), [](const SideEntry& x, const SideEntry& y) {
+    return std::tie(x.element, x.local_edge, x.side_set) < std::tie(y.element, y.local_edge, y.side_set);
+  });
+  struct BoundaryWire {
+    GlobalId id;
+    mesh::ElementEdge side;
+    int side_set;  ///< -1: the entry itself
+  };
+  std::vector<std::vector<BoundaryWire>> boundary(static_cast<std::size_t>(P));
+  for (std::size_t j = 0; j < topo.boundary.size(); ++j) {
+    const auto& b = topo.boundary[j];
+    auto& to = boundary[std::size_t(part_of(b.element))];
+    to.push_back({topo.boundary_ids[j], b, -1});
+    auto it = std::lower_bound(sides.begin(), sides.end(), b, [](const SideEntry& s, const mesh::ElementEdge& x) {
+      return std::tie(s.element, s.local_edge) < std::tie(x.element, x.local_edge);
+    });
+    for (; it != sides.end() && it->element == b.element && it->local_edge == b.local_edge; ++it)
+      to.push_back({topo.boundary_ids[j], b, it->side_set});
+  }
+
+  MigratedPart out;
+  out.nodes_per_element = piece.nodes_per_element;
+  out.num_global_elements = num_elements;
+  std::vector<int> counts;
+  out.elements = parallel::exchange(elements, counts, comm);
+  std::sort(out.elements.begin(), out.elements.end(), [me](const MigratedElement& x, const MigratedElement& y) {
+    return std::make_pair(x.owner != me, x.gid) < std::make_pair(y.owner != me, y.gid);
+  });
+  out.num_owned = LocalId(std::count_if(out.elements.begin(), out.elements.end(),
+                                        [me](const MigratedElement& x) { return x.owner == me; }));
+  out.interfaces = parallel::exchange(interfaces, counts, comm);
+  std::sort(out.interfaces.begin(), out.interfaces.end(),
+            [](const MigratedInterface& x, const MigratedInterface& y) { return x.id < y.id; });
+  auto wires = parallel::exchange(boundary, counts, comm);
+  std::sort(wires.begin(), wires.end(), [](const BoundaryWire& x, const BoundaryWire& y) {
+    return std::make_pair(x.id, x.side_set) < std::make_pair(y.id, y.side_set);
+  });
+  for (const BoundaryWire& w : wires)
+    if (w.side_set < 0)
+      out.boundary.push_back({w.id, w.side, {}});
+    else
+      out.boundary.back().side_sets.push_back(w.side_set);
+  return out;
+}
+
+}  // namespace shellfrac::decomposition
