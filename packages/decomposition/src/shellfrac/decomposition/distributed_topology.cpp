@@ -7,6 +7,7 @@
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
+#include "shellfrac/mesh/edge_incidence.hpp"
 #include "shellfrac/mesh/generators.hpp"
 #include "shellfrac/mesh/vec3_ops.hpp"
 
@@ -85,21 +86,12 @@ std::vector<EdgeUse> uses_at_home(const std::vector<GlobalId>& elements,
       send[std::size_t(shares.home(u.a))].push_back(u);
     }
   std::vector<int> counts;
-  std::vector<EdgeUse> uses = parallel::exchange(send, counts, comm);
+  std::vector<EdgeUse> uses = parallel::exchange(std::move(send), counts, comm);
   std::sort(uses.begin(), uses.end());
   return uses;
 }
 
-/// Calls fn(first, last) for each group [first, last) of uses of one edge.
-template <class Fn>
-void for_each_edge(const std::vector<EdgeUse>& uses, Fn fn) {
-  for (std::size_t i = 0; i < uses.size();) {
-    std::size_t j = i + 1;
-    while (j < uses.size() && uses[j].a == uses[i].a && uses[j].b == uses[i].b) ++j;
-    fn(i, j);
-    i = j;
-  }
-}
+using mesh::detail::for_each_edge;
 
 /// The message of mesh::build_edge_topology for an edge of 3+ elements, with the elements' numbers in the results.
 std::string non_manifold_message(const std::vector<EdgeUse>& uses, std::size_t first, std::size_t last,
@@ -190,15 +182,15 @@ LocalTopology build_local_topology(const std::vector<GlobalId>& elements,
   t.element_interface.assign(n, {-1, -1, -1});
   t.neighbor.assign(n, {mesh::ElementEdge{}, mesh::ElementEdge{}, mesh::ElementEdge{}});
   std::vector<int> counts;
-  for (const EdgeAnswer& a : parallel::exchange(home.answers, counts, comm)) {
+  for (const EdgeAnswer& a : parallel::exchange(std::move(home.answers), counts, comm)) {
     t.element_edges[std::size_t(a.index)][std::size_t(a.local_edge)] = a.edge;
     t.element_interface[std::size_t(a.index)][std::size_t(a.local_edge)] = a.interface;
     t.neighbor[std::size_t(a.index)][std::size_t(a.local_edge)] = a.neighbor;
   }
-  auto interfaces = parallel::exchange(home.interfaces, counts, comm);
+  auto interfaces = parallel::exchange(std::move(home.interfaces), counts, comm);
   std::sort(interfaces.begin(), interfaces.end(), [](const auto& x, const auto& y) { return x.id < y.id; });
   for (const auto& r : interfaces) t.interface_ids.push_back(r.id), t.interfaces.push_back(r.interface);
-  auto boundary = parallel::exchange(home.boundary, counts, comm);
+  auto boundary = parallel::exchange(std::move(home.boundary), counts, comm);
   std::sort(boundary.begin(), boundary.end(), [](const auto& x, const auto& y) { return x.id < y.id; });
   for (const auto& r : boundary) t.boundary_ids.push_back(r.id), t.boundary.push_back(r.side);
   std::array<GlobalId, 4> here{home.counts[0], home.counts[1], home.counts[2], home.non_manifold}, all{};
@@ -249,7 +241,7 @@ std::vector<Vec3> local_vertex_normals(const std::vector<GlobalId>& elements, in
       },
       comm);
   std::vector<int> counts;
-  std::vector<NormalTerm> terms = parallel::exchange(send, counts, comm);
+  std::vector<NormalTerm> terms = parallel::exchange(std::move(send), counts, comm);
   // The serial sum runs in element order; a node is a vertex of an element at most once (mesh::check_mesh).
   std::sort(terms.begin(), terms.end(),
             [](const auto& x, const auto& y) { return std::tie(x.node, x.element) < std::tie(y.node, y.element); });
@@ -262,7 +254,7 @@ std::vector<Vec3> local_vertex_normals(const std::vector<GlobalId>& elements, in
     for (; i < j; ++i) answers[std::size_t(terms[i].rank)].push_back({terms[i].slot, normal});
   }
   std::vector<Vec3> normals(3 * n, Vec3{0, 0, 0});
-  for (const NormalAnswer& a : parallel::exchange(answers, counts, comm)) normals[std::size_t(a.slot)] = a.normal;
+  for (const NormalAnswer& a : parallel::exchange(std::move(answers), counts, comm)) normals[std::size_t(a.slot)] = a.normal;
   return normals;
 }
 

@@ -39,7 +39,7 @@ class PartDirectory {
     for (std::size_t i = 0; i < piece.elements.size(); ++i)
       send[std::size_t(home(piece.elements[i]))].push_back({piece.elements[i], part[i]});
     std::vector<int> counts;
-    const auto given = parallel::exchange(send, counts, comm);
+    const auto given = parallel::exchange(std::move(send), counts, comm);
     parallel::on_all_then_agree(
         [&] {
           for (const ElementPart& g : given) {
@@ -54,18 +54,18 @@ class PartDirectory {
   std::vector<int> parts_of(const std::vector<GlobalId>& ids) const {
     std::vector<std::vector<GlobalId>> asked(static_cast<std::size_t>(P_));
     for (const GlobalId id : ids) asked[std::size_t(home(id))].push_back(id);
+    // The replies come in the order of the questions, rank by rank.
+    std::vector<std::size_t> next(static_cast<std::size_t>(P_), 0), start(static_cast<std::size_t>(P_), 0);
+    for (int q = 1; q < P_; ++q) start[std::size_t(q)] = start[std::size_t(q - 1)] + asked[std::size_t(q - 1)].size();
     std::vector<int> counts;
-    const auto questions = parallel::exchange(asked, counts, comm_);
+    const auto questions = parallel::exchange(std::move(asked), counts, comm_);
     std::vector<std::vector<int>> answers(static_cast<std::size_t>(P_));
     const GlobalId first = width_ * parallel::rank(comm_);
     std::size_t k = 0;
     for (int q = 0; q < P_; ++q)
       for (int j = 0; j < counts[std::size_t(q)]; ++j, ++k)
         answers[std::size_t(q)].push_back(parts_[std::size_t(questions[k] - first)]);
-    const auto replies = parallel::exchange(answers, counts, comm_);
-    // The replies come in the order of the questions, rank by rank.
-    std::vector<std::size_t> next(static_cast<std::size_t>(P_), 0), start(static_cast<std::size_t>(P_), 0);
-    for (int q = 1; q < P_; ++q) start[std::size_t(q)] = start[std::size_t(q - 1)] + asked[std::size_t(q - 1)].size();
+    const auto replies = parallel::exchange(std::move(answers), counts, comm_);
     std::vector<int> out;
     out.reserve(ids.size());
     for (const GlobalId id : ids) {
@@ -194,16 +194,16 @@ MigratedPart migrate_elements(const ElementPiece& piece, const LocalTopology& to
   out.nodes_per_element = piece.nodes_per_element;
   out.num_global_elements = num_elements;
   std::vector<int> counts;
-  out.elements = parallel::exchange(elements, counts, comm);
+  out.elements = parallel::exchange(std::move(elements), counts, comm);
   std::sort(out.elements.begin(), out.elements.end(), [me](const MigratedElement& x, const MigratedElement& y) {
     return std::make_pair(x.owner != me, x.gid) < std::make_pair(y.owner != me, y.gid);
   });
   out.num_owned = LocalId(std::count_if(out.elements.begin(), out.elements.end(),
                                         [me](const MigratedElement& x) { return x.owner == me; }));
-  out.interfaces = parallel::exchange(interfaces, counts, comm);
+  out.interfaces = parallel::exchange(std::move(interfaces), counts, comm);
   std::sort(out.interfaces.begin(), out.interfaces.end(),
             [](const MigratedInterface& x, const MigratedInterface& y) { return x.id < y.id; });
-  auto wires = parallel::exchange(boundary, counts, comm);
+  auto wires = parallel::exchange(std::move(boundary), counts, comm);
   std::sort(wires.begin(), wires.end(), [](const BoundaryWire& x, const BoundaryWire& y) {
     return std::make_pair(x.id, x.side_set) < std::make_pair(y.id, y.side_set);
   });

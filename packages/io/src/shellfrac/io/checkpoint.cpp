@@ -59,43 +59,6 @@ std::vector<std::string> agreed_table_names(const CheckpointData& local, MPI_Com
   return names;
 }
 
-/// MPI's type of T.
-template <class T>
-MPI_Datatype mpi_type();
-template <>
-MPI_Datatype mpi_type<double>() {
-  return MPI_DOUBLE;
-}
-template <>
-MPI_Datatype mpi_type<std::int64_t>() {
-  return MPI_INT64_T;
-}
-
-/// Sends send[q] to rank q and returns what every rank sent here, concatenated in rank order, with the number of
-/// values from each rank in `counts` (a round's worth: at most a few blocks of rows). Collective.
-template <class T>
-std::vector<T> exchange(const std::vector<std::vector<T>>& send, std::vector<int>& counts, MPI_Comm comm) {
-  const int np = parallel::size(comm);
-  std::vector<int> send_counts(std::size_t(np), 0), send_offsets(std::size_t(np), 0), offsets(std::size_t(np), 0);
-  std::vector<T> out;
-  for (int q = 0; q < np; ++q) {
-    send_offsets[std::size_t(q)] = static_cast<int>(out.size());
-    send_counts[std::size_t(q)] = static_cast<int>(send[std::size_t(q)].size());
-    out.insert(out.end(), send[std::size_t(q)].begin(), send[std::size_t(q)].end());
-  }
-  counts.assign(std::size_t(np), 0);
-  MPI_Alltoall(send_counts.data(), 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
-  std::size_t total = 0;
-  for (int q = 0; q < np; ++q) offsets[std::size_t(q)] = static_cast<int>(total), total += std::size_t(counts[std::size_t(q)]);
-  std::vector<T> in(std::max<std::size_t>(total, 1));
-  out.resize(std::max<std::size_t>(out.size(), 1));
-  SHELLFRAC_REQUIRE(MPI_Alltoallv(out.data(), send_counts.data(), send_offsets.data(), mpi_type<T>(), in.data(),
-                                  counts.data(), offsets.data(), mpi_type<T>(), comm) == MPI_SUCCESS,
-                    "checkpoint: exchange of rows failed");
-  in.resize(total);
-  return in;
-}
-
 /// x * num / den without overflow (all non-negative, the result below 2^63).
 __extension__ using Wide = unsigned __int128;
 std::uint64_t scaled(std::uint64_t x, std::uint64_t num, std::uint64_t den) {
@@ -144,9 +107,9 @@ void gather_round(const LocalRows& mine, const WriteSlices& slices, std::size_t 
     mine.rows(std::size_t(first - mine.ids.begin()), std::size_t(end - first), send_values[std::size_t(q)].data());
   }
   std::vector<int> counts;
-  const std::vector<GlobalId> in_ids = exchange(send_ids, counts, comm);
-  send_ids = {};
-  const std::vector<double> in_values = with_values ? exchange(send_values, counts, comm) : std::vector<double>();
+  const std::vector<GlobalId> in_ids = parallel::exchange(std::move(send_ids), counts, comm);
+  const std::vector<double> in_values =
+      with_values ? parallel::exchange(std::move(send_values), counts, comm) : std::vector<double>();
   std::vector<std::size_t> order(in_ids.size());
   std::iota(order.begin(), order.end(), std::size_t(0));  // in rank order: a stable sort keeps the lowest first
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return in_ids[a] < in_ids[b]; });
@@ -242,7 +205,7 @@ CheckpointTable share_asked_rows(const std::vector<GlobalId>& piece_ids, const s
     requests[std::size_t(q)].assign(first, std::upper_bound(first, asked.end(), range[1]));
   }
   std::vector<int> counts;
-  const std::vector<GlobalId> wanted_here = exchange(requests, counts, comm);
+  const std::vector<GlobalId> wanted_here = parallel::exchange(std::move(requests), counts, comm);
   std::vector<std::vector<GlobalId>> found_ids(static_cast<std::size_t>(np));
   std::vector<std::vector<double>> found_values(static_cast<std::size_t>(np));
   std::size_t at = 0;
@@ -258,8 +221,8 @@ CheckpointTable share_asked_rows(const std::vector<GlobalId>& piece_ids, const s
     }
   CheckpointTable own;
   own.width = width;
-  own.ids = exchange(found_ids, counts, comm);
-  own.values = exchange(found_values, counts, comm);
+  own.ids = parallel::exchange(std::move(found_ids), counts, comm);
+  own.values = parallel::exchange(std::move(found_values), counts, comm);
   return own;
 }
 

@@ -35,9 +35,9 @@ std::vector<EdgeUse> edge_uses(GlobalId num_elements, VertexFn vertex) {
   return uses;
 }
 
-/// Calls fn(first, last) for each group [first, last) of uses of the same edge.
-template <class Fn>
-void for_each_edge(const std::vector<EdgeUse>& uses, Fn fn) {
+/// Calls fn(first, last) for each group [first, last) of uses of the same edge (`uses` sorted, each with vertex ids a, b).
+template <class Uses, class Fn>
+void for_each_edge(const Uses& uses, Fn fn) {
   for (std::size_t i = 0; i < uses.size();) {
     std::size_t j = i + 1;
     while (j < uses.size() && uses[j].a == uses[i].a && uses[j].b == uses[i].b) ++j;
