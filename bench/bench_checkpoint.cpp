@@ -21,27 +21,15 @@
 #include <string>
 #include <vector>
 
+#include "process_memory.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/io/checkpoint.hpp"
 
 using namespace shellfrac;
+using bench::reset_peak;
+using bench::status_bytes;
 
 namespace {
-
-/// A /proc/self/status field [bytes].
-double status_bytes(const char* field) {
-  std::ifstream in("/proc/self/status");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind(field, 0) == 0) return 1024.0 * std::stod(line.substr(std::string(field).size()));
-  return 0.0;
-}
-
-/// Resets the peak resident size to the current one; returns the current one.
-double reset_peak() {
-  std::ofstream("/proc/self/clear_refs") << "5";
-  return status_bytes("VmRSS:");
-}
 
 double value(GlobalId id, int c) { return std::sin(double(id) * 0.37 + c) * 1e3 + double(id); }
 

@@ -111,64 +111,41 @@ GlobalId checked_size(const ElementPiece& piece, const std::vector<int>& part, M
   return n;
 }
 
-}  // namespace
+/// The part of every element of the piece and of every element across one of the piece's interfaces.
+class KnownParts {
+ public:
+  /// Asks the directory for the far sides' parts. Collective.
+  KnownParts(const ElementPiece& piece, const LocalTopology& topo, const std::vector<int>& part,
+             GlobalId num_elements, MPI_Comm comm)
+      : part_(part) {
+    for (std::size_t i = 0; i < piece.elements.size(); ++i) here_.pairs.push_back({piece.elements[i], int(i)});
+    here_.sort();
+    const PartDirectory directory(piece, part, num_elements, comm);
+    std::vector<GlobalId> others;  // the far sides of the piece's interfaces that other ranks hold
+    for (const auto& f : topo.interfaces)
+      for (const GlobalId e : {f.minus.element, f.plus.element})
+        if (index(e) < 0) others.push_back(e);
+    std::sort(others.begin(), others.end());
+    others.erase(std::unique(others.begin(), others.end()), others.end());
+    const std::vector<int> far_parts = directory.parts_of(others);
+    for (std::size_t i = 0; i < others.size(); ++i) far_.pairs.push_back({others[i], far_parts[i]});
+  }
+  /// The index of element e in the piece, -1 if another rank holds it.
+  int index(GlobalId e) const { return here_.find(e); }
+  int part_of(GlobalId e) const {
+    const int i = here_.find(e);
+    return i >= 0 ? part_[std::size_t(i)] : far_.find(e);
+  }
 
-MigratedPart migrate_elements(const ElementPiece& piece, const LocalTopology& topo, const std::vector<int>& part,
-                              MPI_Comm comm) {
-  const GlobalId num_elements = checked_size(piece, part, comm);
-  const int me = parallel::rank(comm), P = parallel::size(comm);
-  const std::size_t npe = std::size_t(piece.nodes_per_element);
-  SortedPairs here;  // the piece's elements: id -> index
-  for (std::size_t i = 0; i < piece.elements.size(); ++i) here.pairs.push_back({piece.elements[i], int(i)});
-  here.sort();
-  const PartDirectory directory(piece, part, num_elements, comm);
-  std::vector<GlobalId> others;  // the far sides of the piece's interfaces that other ranks hold
-  for (const auto& f : topo.interfaces)
-    for (const GlobalId e : {f.minus.element, f.plus.element})
-      if (here.find(e) < 0) others.push_back(e);
-  std::sort(others.begin(), others.end());
-  others.erase(std::unique(others.begin(), others.end()), others.end());
-  SortedPairs far;
-  const std::vector<int> far_parts = directory.parts_of(others);
-  for (std::size_t i = 0; i < others.size(); ++i) far.pairs.push_back({others[i], far_parts[i]});
-  const auto part_of = [&](GlobalId e) {
-    const int i = here.find(e);
-    return i >= 0 ? part[std::size_t(i)] : far.find(e);
-  };
+ private:
+  const std::vector<int>& part_;
+  SortedPairs here_, far_;
+};
 
-  // Every element goes to its owner and to each rank that owns an element across one of its interfaces.
-  std::vector<std::pair<int, int>> destinations;  // (element index, rank)
-  for (std::size_t i = 0; i < piece.elements.size(); ++i) destinations.push_back({int(i), part[i]});
-  for (const auto& f : topo.interfaces) {
-    const int m = here.find(f.minus.element), p = here.find(f.plus.element);
-    if (m >= 0) destinations.push_back({m, part_of(f.plus.element)});
-    if (p >= 0) destinations.push_back({p, part_of(f.minus.element)});
-  }
-  std::sort(destinations.begin(), destinations.end());
-  destinations.erase(std::unique(destinations.begin(), destinations.end()), destinations.end());
-  const std::vector<Vec3> directors =
-      local_vertex_normals(piece.elements, piece.nodes_per_element, piece.nodes, piece.coords, piece.source, comm);
-  std::vector<std::vector<MigratedElement>> elements(static_cast<std::size_t>(P));
-  for (const auto& [i, rank] : destinations) {
-    const std::size_t e = std::size_t(i);
-    MigratedElement r;
-    r.gid = piece.elements[e];
-    r.owner = part[e];
-    r.block = piece.blocks[e];
-    for (std::size_t a = 0; a < npe; ++a) r.nodes[a] = piece.nodes[e * npe + a], r.coords[a] = piece.coords[e * npe + a];
-    for (std::size_t a = 0; a < 3; ++a) r.directors[a] = directors[3 * e + a], r.neighbor[a] = topo.neighbor[e][a];
-    elements[std::size_t(rank)].push_back(r);
-  }
-  // An interface goes from the rank that holds its minus side to the owners of its two sides.
-  std::vector<std::vector<MigratedInterface>> interfaces(static_cast<std::size_t>(P));
-  for (std::size_t j = 0; j < topo.interfaces.size(); ++j) {
-    const auto& f = topo.interfaces[j];
-    if (here.find(f.minus.element) < 0) continue;
-    const MigratedInterface r{topo.interface_ids[j], f, part_of(f.minus.element), part_of(f.plus.element)};
-    interfaces[std::size_t(r.minus_owner)].push_back(r);
-    if (r.plus_owner != r.minus_owner) interfaces[std::size_t(r.plus_owner)].push_back(r);
-  }
-  // A boundary entry goes to its element's owner, with the side sets that name it (as (id, side set) pairs).
+/// The boundary entries of the owned elements: each goes from the rank of the piece that holds it to its element's
+/// owner, with the side sets that name it (as (id, side set) pairs). Collective.
+std::vector<MigratedBoundary> migrated_boundary(const ElementPiece& piece, const LocalTopology& topo,
+                                                const KnownParts& parts, MPI_Comm comm) {
   std::vector<SideEntry> sides = piece.side_entries;
   std::sort(sides.begin(), sides.end(), [](const SideEntry& x, const SideEntry& y) {
     return std::tie(x.element, x.local_edge, x.side_set) < std::tie(y.element, y.local_edge, y.side_set);
@@ -178,10 +155,10 @@ MigratedPart migrate_elements(const ElementPiece& piece, const LocalTopology& to
     mesh::ElementEdge side;
     int side_set;  ///< -1: the entry itself
   };
-  std::vector<std::vector<BoundaryWire>> boundary(static_cast<std::size_t>(P));
+  std::vector<std::vector<BoundaryWire>> boundary(static_cast<std::size_t>(parallel::size(comm)));
   for (std::size_t j = 0; j < topo.boundary.size(); ++j) {
     const auto& b = topo.boundary[j];
-    auto& to = boundary[std::size_t(part_of(b.element))];
+    auto& to = boundary[std::size_t(parts.part_of(b.element))];
     to.push_back({topo.boundary_ids[j], b, -1});
     auto it = std::lower_bound(sides.begin(), sides.end(), b, [](const SideEntry& s, const mesh::ElementEdge& x) {
       return std::tie(s.element, s.local_edge) < std::tie(x.element, x.local_edge);
@@ -189,29 +166,82 @@ MigratedPart migrate_elements(const ElementPiece& piece, const LocalTopology& to
     for (; it != sides.end() && it->element == b.element && it->local_edge == b.local_edge; ++it)
       to.push_back({topo.boundary_ids[j], b, it->side_set});
   }
-
-  MigratedPart out;
-  out.nodes_per_element = piece.nodes_per_element;
-  out.num_global_elements = num_elements;
   std::vector<int> counts;
-  out.elements = parallel::exchange(std::move(elements), counts, comm);
-  std::sort(out.elements.begin(), out.elements.end(), [me](const MigratedElement& x, const MigratedElement& y) {
-    return std::make_pair(x.owner != me, x.gid) < std::make_pair(y.owner != me, y.gid);
-  });
-  out.num_owned = LocalId(std::count_if(out.elements.begin(), out.elements.end(),
-                                        [me](const MigratedElement& x) { return x.owner == me; }));
-  out.interfaces = parallel::exchange(std::move(interfaces), counts, comm);
-  std::sort(out.interfaces.begin(), out.interfaces.end(),
-            [](const MigratedInterface& x, const MigratedInterface& y) { return x.id < y.id; });
   auto wires = parallel::exchange(std::move(boundary), counts, comm);
   std::sort(wires.begin(), wires.end(), [](const BoundaryWire& x, const BoundaryWire& y) {
     return std::make_pair(x.id, x.side_set) < std::make_pair(y.id, y.side_set);
   });
+  std::vector<MigratedBoundary> out;
   for (const BoundaryWire& w : wires)
     if (w.side_set < 0)
-      out.boundary.push_back({w.id, w.side, {}});
+      out.push_back({w.id, w.side, {}});
     else
-      out.boundary.back().side_sets.push_back(w.side_set);
+      out.back().side_sets.push_back(w.side_set);
+  return out;
+}
+
+/// Every element of the piece, to its owner and to each rank that owns an element across one of its interfaces (the
+/// ghost layer); what comes here, owned elements by id first, then the ghosts by id. Collective.
+std::vector<MigratedElement> migrated_elements(const ElementPiece& piece, const LocalTopology& topo,
+                                               const std::vector<int>& part, const KnownParts& parts, MPI_Comm comm) {
+  const int me = parallel::rank(comm);
+  const std::size_t npe = std::size_t(piece.nodes_per_element);
+  std::vector<std::pair<int, int>> destinations;  // (element index, rank)
+  for (std::size_t i = 0; i < piece.elements.size(); ++i) destinations.push_back({int(i), part[i]});
+  for (const auto& f : topo.interfaces) {
+    const int m = parts.index(f.minus.element), p = parts.index(f.plus.element);
+    if (m >= 0) destinations.push_back({m, parts.part_of(f.plus.element)});
+    if (p >= 0) destinations.push_back({p, parts.part_of(f.minus.element)});
+  }
+  std::sort(destinations.begin(), destinations.end());
+  destinations.erase(std::unique(destinations.begin(), destinations.end()), destinations.end());
+  const std::vector<Vec3> directors =
+      local_vertex_normals(piece.elements, piece.nodes_per_element, piece.nodes, piece.coords, piece.source, comm);
+  std::vector<std::vector<MigratedElement>> send(static_cast<std::size_t>(parallel::size(comm)));
+  for (const auto& [i, rank] : destinations) {
+    const std::size_t e = std::size_t(i);
+    MigratedElement r;
+    r.gid = piece.elements[e];
+    r.owner = part[e];
+    r.block = piece.blocks[e];
+    for (std::size_t a = 0; a < npe; ++a) r.nodes[a] = piece.nodes[e * npe + a], r.coords[a] = piece.coords[e * npe + a];
+    for (std::size_t a = 0; a < 3; ++a) r.directors[a] = directors[3 * e + a], r.neighbor[a] = topo.neighbor[e][a];
+    send[std::size_t(rank)].push_back(r);
+  }
+  std::vector<int> counts;
+  auto elements = parallel::exchange(std::move(send), counts, comm);
+  std::sort(elements.begin(), elements.end(), [me](const MigratedElement& x, const MigratedElement& y) {
+    return std::make_pair(x.owner != me, x.gid) < std::make_pair(y.owner != me, y.gid);
+  });
+  return elements;
+}
+
+}  // namespace
+
+MigratedPart migrate_elements(const ElementPiece& piece, const LocalTopology& topo, const std::vector<int>& part,
+                              MPI_Comm comm) {
+  MigratedPart out;
+  out.nodes_per_element = piece.nodes_per_element;
+  out.num_global_elements = checked_size(piece, part, comm);
+  const int me = parallel::rank(comm);
+  const KnownParts parts(piece, topo, part, out.num_global_elements, comm);
+  out.elements = migrated_elements(piece, topo, part, parts, comm);
+  out.num_owned = LocalId(std::count_if(out.elements.begin(), out.elements.end(),
+                                        [me](const MigratedElement& x) { return x.owner == me; }));
+  // An interface goes from the rank that holds its minus side to the owners of its two sides.
+  std::vector<std::vector<MigratedInterface>> interfaces(static_cast<std::size_t>(parallel::size(comm)));
+  for (std::size_t j = 0; j < topo.interfaces.size(); ++j) {
+    const auto& f = topo.interfaces[j];
+    if (parts.index(f.minus.element) < 0) continue;
+    const MigratedInterface r{topo.interface_ids[j], f, parts.part_of(f.minus.element), parts.part_of(f.plus.element)};
+    interfaces[std::size_t(r.minus_owner)].push_back(r);
+    if (r.plus_owner != r.minus_owner) interfaces[std::size_t(r.plus_owner)].push_back(r);
+  }
+  std::vector<int> counts;
+  out.interfaces = parallel::exchange(std::move(interfaces), counts, comm);
+  std::sort(out.interfaces.begin(), out.interfaces.end(),
+            [](const MigratedInterface& x, const MigratedInterface& y) { return x.id < y.id; });
+  out.boundary = migrated_boundary(piece, topo, parts, comm);
   return out;
 }
 
