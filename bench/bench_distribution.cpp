@@ -115,8 +115,9 @@ int main(int argc, char** argv) {
       std::printf("rank %d: +%.1f MiB, %lld owned, %lld overlap\n", r, extras[std::size_t(r)] / 1048576.0,
                   (long long)counts[2 * std::size_t(r)], (long long)counts[2 * std::size_t(r) + 1]);
     const double largest = *std::max_element(extras.begin(), extras.end());
-    std::printf("path=%s\nranks=%d\nelements=%lld\npeak_extra_bytes_max=%.0f\npeak_extra_bytes_max_per_global_element=%.2f\n",
-                path.c_str(), P, (long long)ne, largest, largest / double(ne));
+    std::printf(
+        "path=%s\nranks=%d\nelements=%lld\npeak_extra_bytes_max=%.0f\npeak_extra_bytes_max_per_global_element=%.2f\n",
+        path.c_str(), P, (long long)ne, largest, largest / double(ne));
     for (const auto& [name, s] : phases) std::printf("%s_s=%.3f\n", name.c_str(), s);
   }
   MPI_Finalize();

@@ -411,7 +411,8 @@ TEST(DistributedMesh, AnElementGivenByTwoRanksIsAnError) {
   if (e < c.mesh.num_elements()) {
     piece.elements = {e};
     piece.blocks = {0};
-    for (int a = 0; a < 3; ++a) piece.nodes.push_back(c.mesh.node(e, a)), piece.coords.push_back(c.mesh.coords[c.mesh.node(e, a)]);
+    for (int a = 0; a < 3; ++a)
+      piece.nodes.push_back(c.mesh.node(e, a)), piece.coords.push_back(c.mesh.coords[c.mesh.node(e, a)]);
   }
   std::vector<std::array<GlobalId, 3>> vertices;
   for (const GlobalId g : piece.elements) vertices.push_back({c.mesh.node(g, 0), c.mesh.node(g, 1), c.mesh.node(g, 2)});

@@ -165,8 +165,8 @@ TEST(DistributedTopology, VertexNormalsAreTheSerialBits) {
 TEST(DistributedTopology, ZeroJacobianIsAnErrorOnEveryRank) {
   auto m = mesh::make_rectangle(1.0, 1.0, 2, 1);
   m.coords[std::size_t(m.node(1, 2))] = m.coords[std::size_t(m.node(1, 0))];  // element 2 collapses
-  std::vector<GlobalId> mine = parallel::rank() == parallel::size() - 1 ? std::vector<GlobalId>{0, 1, 2, 3}
-                                                                         : std::vector<GlobalId>{};
+  std::vector<GlobalId> mine =
+      parallel::rank() == parallel::size() - 1 ? std::vector<GlobalId>{0, 1, 2, 3} : std::vector<GlobalId>{};
   std::vector<GlobalId> nodes;
   std::vector<Vec3> coords;
   for (const GlobalId e : mine)

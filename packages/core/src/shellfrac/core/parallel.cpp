@@ -136,7 +136,8 @@ void exchange_bytes(const char* out, const std::vector<std::size_t>& send_bytes,
                     const std::function<char*(std::size_t)>& allocate, std::vector<std::size_t>& received_bytes,
                     MPI_Comm comm) {
   const int P = size(comm);
-  SHELLFRAC_REQUIRE(int(send_bytes.size()) == P, "exchange: " << send_bytes.size() << " send vectors for " << P << " ranks");
+  SHELLFRAC_REQUIRE(int(send_bytes.size()) == P,
+                    "exchange: " << send_bytes.size() << " send vectors for " << P << " ranks");
   constexpr std::size_t limit = 2147483647u;
   std::vector<int> send_count(static_cast<std::size_t>(P)), receive_count(static_cast<std::size_t>(P));
   std::vector<int> send_offset(static_cast<std::size_t>(P), 0), receive_offset(static_cast<std::size_t>(P), 0);

@@ -235,10 +235,12 @@ DistributedMesh::DistributedMesh(const ElementPiece& piece, const LocalTopology&
     li.plus_edge = f.plus.local_edge;
     li.owned = std::min(r.minus_owner, r.plus_owner) == rank_;
     li.non_manifold = f.non_manifold;
-    SHELLFRAC_REQUIRE(li.minus >= 0 && li.plus >= 0, "DistributedMesh: interface " << r.id << " side not in the overlap");
+    SHELLFRAC_REQUIRE(li.minus >= 0 && li.plus >= 0,
+                      "DistributedMesh: interface " << r.id << " side not in the overlap");
     interfaces_.push_back(li);
   }
-  for (MigratedBoundary& b : m.boundary) boundary_.push_back({local_id(b.side.element), b.side.local_edge, std::move(b.side_sets)});
+  for (MigratedBoundary& b : m.boundary)
+    boundary_.push_back({local_id(b.side.element), b.side.local_edge, std::move(b.side_sets)});
   maps_ = make_maps(element_gid_, num_owned_, num_global_elements_, comm_);
 }
 

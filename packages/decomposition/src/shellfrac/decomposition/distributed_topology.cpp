@@ -48,7 +48,7 @@ struct EdgeUse {
   GlobalId element;
   std::int32_t local_edge;
   std::int32_t rank, index;
-  std::int32_t ascending;  ///< the element traverses the edge from a to b
+  std::int32_t ascending;                   ///< the element traverses the edge from a to b
   bool operator<(const EdgeUse& o) const {  // the order of mesh/edge_incidence.hpp
     return std::tie(a, b, element, local_edge) < std::tie(o.a, o.b, o.element, o.local_edge);
   }
@@ -173,8 +173,9 @@ HomeRecords records_of_edges(const std::vector<EdgeUse>& uses, mesh::NonManifold
 LocalTopology build_local_topology(const std::vector<GlobalId>& elements,
                                    const std::vector<std::array<GlobalId, 3>>& vertices, mesh::NonManifoldPolicy policy,
                                    const std::string& source, MPI_Comm comm) {
-  SHELLFRAC_REQUIRE(elements.size() == vertices.size(),
-                    "build_local_topology: " << elements.size() << " elements with " << vertices.size() << " vertex triples");
+  SHELLFRAC_REQUIRE(elements.size() == vertices.size(), "build_local_topology: " << elements.size() << " elements with "
+                                                                                 << vertices.size()
+                                                                                 << " vertex triples");
   HomeRecords home = records_of_edges(uses_at_home(elements, vertices, comm), policy, source, comm);
   LocalTopology t;
   const std::size_t n = elements.size();
@@ -233,9 +234,9 @@ std::vector<Vec3> local_vertex_normals(const std::vector<GlobalId>& elements, in
         for (std::size_t i = 0; i < n; ++i)
           for (int a = 0; a < 3; ++a) {
             NormalTerm t{nodes[i * npe + std::size_t(a)], elements[i], me, static_cast<std::int32_t>(3 * i) + a, {}};
-            SHELLFRAC_INPUT_REQUIRE(mesh::vertex_normal_term(nodes_per_element, &coords[i * npe], a, t.term),
-                                    source << ": element " << elements[i] + 1 << " has a zero Jacobian at vertex "
-                                           << a + 1);
+            SHELLFRAC_INPUT_REQUIRE(
+                mesh::vertex_normal_term(nodes_per_element, &coords[i * npe], a, t.term),
+                source << ": element " << elements[i] + 1 << " has a zero Jacobian at vertex " << a + 1);
             send[std::size_t(shares.home(t.node))].push_back(t);
           }
       },
@@ -254,7 +255,8 @@ std::vector<Vec3> local_vertex_normals(const std::vector<GlobalId>& elements, in
     for (; i < j; ++i) answers[std::size_t(terms[i].rank)].push_back({terms[i].slot, normal});
   }
   std::vector<Vec3> normals(3 * n, Vec3{0, 0, 0});
-  for (const NormalAnswer& a : parallel::exchange(std::move(answers), counts, comm)) normals[std::size_t(a.slot)] = a.normal;
+  for (const NormalAnswer& a : parallel::exchange(std::move(answers), counts, comm))
+    normals[std::size_t(a.slot)] = a.normal;
   return normals;
 }
 

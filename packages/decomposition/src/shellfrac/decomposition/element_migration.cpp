@@ -102,9 +102,9 @@ GlobalId checked_size(const ElementPiece& piece, const std::vector<int>& part, M
         for (std::size_t i = 0; i < m; ++i) {
           SHELLFRAC_INPUT_REQUIRE(piece.elements[i] >= 0 && piece.elements[i] < n,
                                   piece.source << ": element id " << piece.elements[i] + 1 << " is not in 1.." << n);
-          SHELLFRAC_REQUIRE(part[i] >= 0 && part[i] < P,
-                            piece.source << ": element " << piece.elements[i] + 1 << " has part " << part[i]
-                                         << ", not a rank in [0, " << P << ")");
+          SHELLFRAC_REQUIRE(part[i] >= 0 && part[i] < P, piece.source << ": element " << piece.elements[i] + 1
+                                                                      << " has part " << part[i]
+                                                                      << ", not a rank in [0, " << P << ")");
         }
       },
       comm);
@@ -115,8 +115,8 @@ GlobalId checked_size(const ElementPiece& piece, const std::vector<int>& part, M
 class KnownParts {
  public:
   /// Asks the directory for the far sides' parts. Collective.
-  KnownParts(const ElementPiece& piece, const LocalTopology& topo, const std::vector<int>& part,
-             GlobalId num_elements, MPI_Comm comm)
+  KnownParts(const ElementPiece& piece, const LocalTopology& topo, const std::vector<int>& part, GlobalId num_elements,
+             MPI_Comm comm)
       : part_(part) {
     for (std::size_t i = 0; i < piece.elements.size(); ++i) here_.pairs.push_back({piece.elements[i], int(i)});
     here_.sort();
@@ -204,7 +204,8 @@ std::vector<MigratedElement> migrated_elements(const ElementPiece& piece, const 
     r.gid = piece.elements[e];
     r.owner = part[e];
     r.block = piece.blocks[e];
-    for (std::size_t a = 0; a < npe; ++a) r.nodes[a] = piece.nodes[e * npe + a], r.coords[a] = piece.coords[e * npe + a];
+    for (std::size_t a = 0; a < npe; ++a)
+      r.nodes[a] = piece.nodes[e * npe + a], r.coords[a] = piece.coords[e * npe + a];
     for (std::size_t a = 0; a < 3; ++a) r.directors[a] = directors[3 * e + a], r.neighbor[a] = topo.neighbor[e][a];
     send[std::size_t(rank)].push_back(r);
   }

@@ -23,13 +23,13 @@ struct SideEntry {
 
 /// The elements one rank holds of a mesh whose elements are numbered 0..N-1 over all ranks.
 struct ElementPiece {
-  int nodes_per_element = 3;          ///< the same on every rank
-  std::vector<GlobalId> elements;     ///< global ids, each on exactly one rank, any order
-  std::vector<int> blocks;            ///< per element: its block index
-  std::vector<GlobalId> nodes;        ///< per element: its nodes_per_element mesh node ids
-  std::vector<Vec3> coords;           ///< their coordinates, in the same layout
+  int nodes_per_element = 3;            ///< the same on every rank
+  std::vector<GlobalId> elements;       ///< global ids, each on exactly one rank, any order
+  std::vector<int> blocks;              ///< per element: its block index
+  std::vector<GlobalId> nodes;          ///< per element: its nodes_per_element mesh node ids
+  std::vector<Vec3> coords;             ///< their coordinates, in the same layout
   std::vector<SideEntry> side_entries;  ///< the side-set entries of these elements
-  std::string source;                 ///< the mesh file, for messages
+  std::string source;                   ///< the mesh file, for messages
 };
 
 /// An element of a rank's overlap, with what the distributed mesh keeps of it.

@@ -35,7 +35,8 @@ std::vector<EdgeUse> edge_uses(GlobalId num_elements, VertexFn vertex) {
   return uses;
 }
 
-/// Calls fn(first, last) for each group [first, last) of uses of the same edge (`uses` sorted, each with vertex ids a, b).
+/// Calls fn(first, last) for each group [first, last) of uses of the same edge (`uses` sorted, each use with its
+/// vertex ids a, b).
 template <class Uses, class Fn>
 void for_each_edge(const Uses& uses, Fn fn) {
   for (std::size_t i = 0; i < uses.size();) {
