@@ -333,10 +333,10 @@ TEST(DistributedMesh, RejectsBadPartition) {
 }
 
 /// This rank's piece of c's mesh when the elements are spread over the ranks in blocks or round robin.
-decomposition::ElementPiece piece_of(const Case& c, bool round_robin) {
+mesh::ElementPiece piece_of(const Case& c, bool round_robin) {
   const int me = parallel::rank(), P = parallel::size();
   const GlobalId ne = c.mesh.num_elements();
-  decomposition::ElementPiece piece;
+  mesh::ElementPiece piece;
   piece.nodes_per_element = c.mesh.nodes_per_element;
   piece.source = c.name;
   for (GlobalId e = 0; e < ne; ++e) {
@@ -405,7 +405,7 @@ TEST(DistributedMesh, PiecesOfTheMeshGiveTheViewOfTheWholeMesh) {
 TEST(DistributedMesh, AnElementGivenByTwoRanksIsAnError) {
   if (parallel::size() < 2) GTEST_SKIP() << "needs two ranks";
   const Case c = make_case("two-ranks", mesh::make_rectangle(1.0, 1.0, 2, 1));
-  decomposition::ElementPiece piece;
+  mesh::ElementPiece piece;
   piece.source = "pieces.exo";
   const GlobalId e = parallel::rank() == 1 ? 0 : parallel::rank();  // ranks 0 and 1 both give element 0
   if (e < c.mesh.num_elements()) {

@@ -24,12 +24,12 @@
 
 namespace shellfrac::mesh {
 struct SerialMesh;
+struct ElementPiece;  // mesh_piece.hpp
 }
 
 namespace shellfrac::decomposition {
 
 struct ElementMaps;    // element_maps.hpp
-struct ElementPiece;   // element_migration.hpp
 struct LocalTopology;  // distributed_topology.hpp
 
 /// An interface seen from this rank: P(e) = (E-, ê-), (E+, ê+) with local overlap ids.
@@ -57,7 +57,7 @@ class DistributedMesh {
   /// Builds this rank's part from the pieces of the mesh the ranks hold (element_migration.hpp) and their topology
   /// (build_local_topology): part[i] is the rank that owns piece.elements[i]. No rank holds the whole mesh. The same
   /// view, bit for bit, as the constructor above given the whole mesh and the same partition. Collective.
-  DistributedMesh(const ElementPiece& piece, const LocalTopology& topo, const std::vector<int>& part,
+  DistributedMesh(const mesh::ElementPiece& piece, const LocalTopology& topo, const std::vector<int>& part,
                   MPI_Comm comm = MPI_COMM_WORLD);
   ~DistributedMesh();
   DistributedMesh(const DistributedMesh&) = delete;

@@ -6,31 +6,16 @@
 /// elements it keeps as a directory (docs/parallel.md, "Distributed set-up").
 #include <mpi.h>
 
-#include <string>
 #include <vector>
 
 #include "shellfrac/core/types.hpp"
 #include "shellfrac/decomposition/distributed_topology.hpp"
+#include "shellfrac/mesh/mesh_piece.hpp"
 
 namespace shellfrac::decomposition {
 
-/// A side-set entry: local edge `local_edge` of element `element` is in side set `side_set` (an index into the
-/// mesh's side sets).
-struct SideEntry {
-  GlobalId element = -1;
-  int local_edge = -1, side_set = -1;
-};
-
-/// The elements one rank holds of a mesh whose elements are numbered 0..N-1 over all ranks.
-struct ElementPiece {
-  int nodes_per_element = 3;            ///< the same on every rank
-  std::vector<GlobalId> elements;       ///< global ids, each on exactly one rank, any order
-  std::vector<int> blocks;              ///< per element: its block index
-  std::vector<GlobalId> nodes;          ///< per element: its nodes_per_element mesh node ids
-  std::vector<Vec3> coords;             ///< their coordinates, in the same layout
-  std::vector<SideEntry> side_entries;  ///< the side-set entries of these elements
-  std::string source;                   ///< the mesh file, for messages
-};
+using mesh::ElementPiece;
+using mesh::SideEntry;
 
 /// An element of a rank's overlap, with what the distributed mesh keeps of it.
 struct MigratedElement {

@@ -33,19 +33,10 @@ double vertex_area(const SerialMesh& mesh, GlobalId e) {
 namespace {
 
 template <class Set>
-void check_ids_and_names(const std::vector<Set>& sets, const char* kind, const std::string& source) {
-  std::set<int> ids;
-  std::set<std::string> names;
-  for (const auto& s : sets) {
-    SHELLFRAC_INPUT_REQUIRE(s.id > 0, source << ": " << kind << " '" << s.name << "' has id " << s.id
-                                             << "; ids must be positive");
-    SHELLFRAC_INPUT_REQUIRE(ids.insert(s.id).second, source << ": two " << kind << "s have id " << s.id);
-    SHELLFRAC_INPUT_REQUIRE(!s.name.empty(), source << ": " << kind << " " << s.id << " has an empty name");
-    const std::string bad = params::unprintable_part(s.name);
-    SHELLFRAC_INPUT_REQUIRE(bad.empty(), source << ": the name '" << params::escaped(s.name) << "' of " << kind << " "
-                                                << s.id << " has " << bad << "; names must be printable UTF-8");
-    SHELLFRAC_INPUT_REQUIRE(names.insert(s.name).second, source << ": two " << kind << "s are named '" << s.name << "'");
-  }
+void check_labels_of(const std::vector<Set>& sets, const char* kind, const std::string& source) {
+  std::vector<std::pair<int, std::string>> ids_and_names;
+  for (const auto& s : sets) ids_and_names.emplace_back(s.id, s.name);
+  check_ids_and_names(ids_and_names, kind, source);
 }
 
 template <class T>
@@ -137,6 +128,43 @@ std::string FileIds::node(GlobalId n) const {
   return "node " + std::to_string(ids[static_cast<std::size_t>(n)]);
 }
 
+void check_ids_and_names(const std::vector<std::pair<int, std::string>>& ids_and_names, const char* kind,
+                         const std::string& source) {
+  std::set<int> ids;
+  std::set<std::string> names;
+  for (const auto& [id, name] : ids_and_names) {
+    SHELLFRAC_INPUT_REQUIRE(id > 0, source << ": " << kind << " '" << name << "' has id " << id
+                                           << "; ids must be positive");
+    SHELLFRAC_INPUT_REQUIRE(ids.insert(id).second, source << ": two " << kind << "s have id " << id);
+    SHELLFRAC_INPUT_REQUIRE(!name.empty(), source << ": " << kind << " " << id << " has an empty name");
+    const std::string bad = params::unprintable_part(name);
+    SHELLFRAC_INPUT_REQUIRE(bad.empty(), source << ": the name '" << params::escaped(name) << "' of " << kind << " "
+                                                << id << " has " << bad << "; names must be printable UTF-8");
+    SHELLFRAC_INPUT_REQUIRE(names.insert(name).second, source << ": two " << kind << "s are named '" << name << "'");
+  }
+}
+
+void check_element_nodes(GlobalId e, const GlobalId* nodes, int nodes_per_element, GlobalId num_nodes,
+                         const FileIds& element_ids, const FileIds& node_ids, const std::string& source) {
+  for (int a = 0; a < nodes_per_element; ++a) {
+    const GlobalId n = nodes[a];
+    SHELLFRAC_INPUT_REQUIRE(n >= 0 && n < num_nodes, source << ": " << element_ids.element(e) << " refers to node "
+                                                            << n + 1 << " (a position in the file), but the mesh has "
+                                                            << num_nodes << " nodes");
+    for (int c = 0; c < a; ++c)
+      SHELLFRAC_INPUT_REQUIRE(nodes[c] != n,
+                              source << ": " << element_ids.element(e) << " uses " << node_ids.node(n) << " twice");
+  }
+}
+
+void check_element_area(GlobalId e, const Vec3& a, const Vec3& b, const Vec3& c, const FileIds& element_ids,
+                        const std::string& source) {
+  // Zero-area (collinear) triangles have no normal and no stable time step.
+  const double h2 = std::max({norm2(sub(b, a)), norm2(sub(c, b)), norm2(sub(a, c))});
+  SHELLFRAC_INPUT_REQUIRE(0.5 * norm(cross(sub(b, a), sub(c, a))) > 1e-12 * h2,
+                          source << ": " << element_ids.element(e) << " is degenerate (its vertices are collinear)");
+}
+
 void check_mesh(const SerialMesh& mesh) {
   const std::string& src = mesh.source;
   SHELLFRAC_INPUT_REQUIRE(mesh.nodes_per_element == 3 || mesh.nodes_per_element == 6,
@@ -155,10 +183,10 @@ void check_mesh(const SerialMesh& mesh) {
                               << " nodes");
   const auto& element = mesh.element_ids;
   const auto& node = mesh.node_ids;
-  check_ids_and_names(mesh.blocks, "element block", src);
-  check_ids_and_names(mesh.node_sets, "node set", src);
-  check_ids_and_names(mesh.side_sets, "side set", src);
-  check_ids_and_names(mesh.element_sets, "element set", src);
+  check_labels_of(mesh.blocks, "element block", src);
+  check_labels_of(mesh.node_sets, "node set", src);
+  check_labels_of(mesh.side_sets, "side set", src);
+  check_labels_of(mesh.element_sets, "element set", src);
   for (const auto& c : mesh.coords)
     SHELLFRAC_INPUT_REQUIRE(std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]),
                             src << ": a node has a non-finite coordinate");
@@ -166,20 +194,9 @@ void check_mesh(const SerialMesh& mesh) {
     const int b = mesh.element_block[e];
     SHELLFRAC_INPUT_REQUIRE(b >= 0 && b < static_cast<int>(mesh.blocks.size()),
                             src << ": " << element.element(e) << " has no valid block");
-    for (int a = 0; a < mesh.nodes_per_element; ++a) {
-      const GlobalId n = mesh.node(e, a);
-      SHELLFRAC_INPUT_REQUIRE(n >= 0 && n < nn, src << ": " << element.element(e) << " refers to node " << n + 1
-                                                    << " (a position in the file), but the mesh has " << nn
-                                                    << " nodes");
-      for (int c = 0; c < a; ++c)
-        SHELLFRAC_INPUT_REQUIRE(mesh.node(e, c) != n,
-                                src << ": " << element.element(e) << " uses " << node.node(n) << " twice");
-    }
-    // Zero-area (collinear) triangles have no normal and no stable time step.
-    const Vec3 &p = mesh.coords[mesh.node(e, 0)], &q = mesh.coords[mesh.node(e, 1)], &r = mesh.coords[mesh.node(e, 2)];
-    const double h2 = std::max({norm2(sub(q, p)), norm2(sub(r, q)), norm2(sub(p, r))});
-    SHELLFRAC_INPUT_REQUIRE(vertex_area(mesh, e) > 1e-12 * h2,
-                            src << ": " << element.element(e) << " is degenerate (its vertices are collinear)");
+    const GlobalId* nodes = &mesh.connectivity[static_cast<std::size_t>(e * mesh.nodes_per_element)];
+    check_element_nodes(e, nodes, mesh.nodes_per_element, nn, element, node, src);
+    check_element_area(e, mesh.coords[nodes[0]], mesh.coords[nodes[1]], mesh.coords[nodes[2]], element, src);
   }
   for (const auto& s : mesh.node_sets) check_sorted_in_range(s.nodes, nn, "node set", s.name, "node", src);
   for (const auto& s : mesh.element_sets) check_sorted_in_range(s.elements, ne, "element set", s.name, "element", src);

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "shellfrac/core/types.hpp"
@@ -96,6 +97,19 @@ struct SerialMesh {
 /// no degenerate triangle (repeated vertex or zero area)). Throws InputError naming mesh.source and the
 /// offending element/node/set.
 void check_mesh(const SerialMesh& mesh);
+
+/// check_mesh's check of the blocks or the sets of one kind, given as (id, name): ids positive and unique, names
+/// not empty, printable and unique. InputError naming `source` and `kind` ("element block", "node set", ...).
+void check_ids_and_names(const std::vector<std::pair<int, std::string>>& ids_and_names, const char* kind,
+                         const std::string& source);
+
+/// check_mesh's checks of element e whose nodes are `nodes` (nodes_per_element of them): each below num_nodes
+/// and none twice. InputError naming `source`, the element and the node (by element_ids, node_ids).
+void check_element_nodes(GlobalId e, const GlobalId* nodes, int nodes_per_element, GlobalId num_nodes,
+                         const FileIds& element_ids, const FileIds& node_ids, const std::string& source);
+/// check_mesh's check of element e whose vertices are at a, b, c: not collinear. InputError as above.
+void check_element_area(GlobalId e, const Vec3& a, const Vec3& b, const Vec3& c, const FileIds& element_ids,
+                        const std::string& source);
 
 /// Serializes the mesh for a broadcast.
 std::vector<char> pack(const SerialMesh& mesh);
