@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "process_memory.hpp"
+#include "shellfrac/core/memory_release.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/io/checkpoint.hpp"
 
@@ -50,6 +51,7 @@ std::vector<GlobalId> owned_ids(GlobalId n, MPI_Comm comm) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  shellfrac::release_freed_memory_promptly();  // as the shellfrac executable does
   MPI_Init(&argc, &argv);
   const MPI_Comm comm = MPI_COMM_WORLD;
   GlobalId elements = 500000;

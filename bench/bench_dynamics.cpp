@@ -24,6 +24,7 @@
 #include "allocation_counter.hpp"
 #include "shellfrac/core/application.hpp"
 #include "shellfrac/core/error.hpp"
+#include "shellfrac/core/memory_release.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/decomposition/distributed_mesh.hpp"
 #include "shellfrac/solver/dynamics/shell_dynamics.hpp"
@@ -140,6 +141,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  shellfrac::release_freed_memory_promptly();  // as the shellfrac executable does
   Tpetra::ScopeGuard scope(&argc, &argv);
   return shellfrac::run_guarded("shellfrac_bench", [&] { return run(argc, argv); });
 }

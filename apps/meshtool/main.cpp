@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "shellfrac/core/error.hpp"
+#include "shellfrac/core/memory_release.hpp"
 #include "shellfrac/mesh/edge_topology.hpp"
 #include "shellfrac/mesh/serial_mesh.hpp"
 #include "shellfrac/mesh/vec3_ops.hpp"
@@ -136,6 +137,7 @@ int run(const std::vector<std::string>& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  shellfrac::release_freed_memory_promptly();
   MPI_Init(&argc, &argv);  // the mesh library's broadcast helpers expect MPI; the tool itself is serial
   int code = 0;
   try {

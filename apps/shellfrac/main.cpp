@@ -28,6 +28,7 @@
 #include "shellfrac/core/application.hpp"
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/files.hpp"
+#include "shellfrac/core/memory_release.hpp"
 #include "shellfrac/core/parallel.hpp"
 #include "shellfrac/core/version.hpp"
 #include "shellfrac/solver/setup/stop_signals.hpp"
@@ -213,6 +214,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  shellfrac::release_freed_memory_promptly();  // before the set-up allocates anything large
   shellfrac::solver::catch_stop_signals();  // before MPI and the set-up: a batch system's signal is never lost
   // A file beyond the size limit (ulimit -f, a batch system's file-size limit) fails its write (EFBIG), which is
   // reported naming the file with exit code 6, on every rank at once, instead of a kill by SIGXFSZ on one rank.
