@@ -3,14 +3,17 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <array>
 #include <string>
 #include <vector>
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
+#include "shellfrac/decomposition/distributed_topology.hpp"
 #include "shellfrac/decomposition/partitioner.hpp"
 #include "shellfrac/mesh/edge_topology.hpp"
 #include "shellfrac/mesh/generators.hpp"
+#include "shellfrac/mesh/mesh_piece.hpp"
 
 namespace {
 
@@ -118,6 +121,48 @@ TEST(Partitioner, Zoltan2AllAlgorithmsCover) {
       EXPECT_LT(edge_cut(topo, part), static_cast<GlobalId>(0.3 * static_cast<double>(topo.interfaces.size())))
           << alg << " " << name;
     }
+  }
+}
+
+/// This rank's share [r W, (r + 1) W), W = ceil(N / P), of m as a piece, with its distributed topology.
+struct SharePiece {
+  mesh::ElementPiece piece;
+  decomposition::LocalTopology topo;
+  GlobalId first = 0;
+};
+
+SharePiece share_piece(const mesh::SerialMesh& m) {
+  const GlobalId ne = m.num_elements(), P = parallel::size(), r = parallel::rank(), w = (ne + P - 1) / P;
+  SharePiece s;
+  s.first = std::min(ne, r * w);
+  s.piece = mesh::element_range_piece(m, s.first, std::min(ne, (r + 1) * w));
+  std::vector<std::array<GlobalId, 3>> vertices;
+  for (GlobalId e : s.piece.elements) vertices.push_back({m.node(e, 0), m.node(e, 1), m.node(e, 2)});
+  s.topo = decomposition::build_local_topology(s.piece.elements, vertices, mesh::NonManifoldPolicy::Star, m.source,
+                                               MPI_COMM_WORLD);
+  return s;
+}
+
+TEST(Partitioner, Zoltan2OnPiecesGivesThePartsOfTheWholeMesh) {
+  // A mesh held in pieces (each rank its element share, as read_exodus_piece gives them) is partitioned from the
+  // pieces alone, with the same parts as the whole mesh partitioned by Zoltan2, for every algorithm and for the
+  // trivial cases; each rank gets the parts of its own elements.
+  const int np = parallel::size();
+  std::vector<NamedMesh> meshes = test_meshes();
+  meshes.push_back({"strip3", strip3()});
+  for (const auto& [name, m] : meshes) {
+    const auto topo = mesh::build_edge_topology(m);
+    const SharePiece s = share_piece(m);
+    for (const std::string alg : {"scotch", "rcb", "multijagged", "phg"})
+      for (int nparts : {1, std::max(np, 2), 3, 50}) {
+        const auto params = make_params("Zoltan2", alg);
+        const auto whole = decomposition::partition_elements(m, topo, nparts, params);
+        const auto mine = decomposition::partition_piece(s.piece, s.topo, m.num_elements(), nparts, params);
+        const std::vector<int> expected(whole.begin() + s.first,
+                                        whole.begin() + s.first + static_cast<GlobalId>(s.piece.elements.size()));
+        EXPECT_EQ(mine, expected) << name << " " << alg << " " << nparts << " parts";
+      }
+    EXPECT_THROW(decomposition::partition_piece(s.piece, s.topo, m.num_elements(), 2, make_params("METIS")), Error);
   }
 }
 
