@@ -56,6 +56,13 @@ struct ElementPiece {
   std::string source;  ///< the mesh file, for messages
 };
 
+/// The set entries of some elements of a mesh, sorted as ElementPiece keeps them: the side-set entries of their
+/// edges, the node-set entries of their nodes, their element-set entries.
+struct SetEntries {
+  std::vector<SideEntry> side_entries;
+  std::vector<SetEntry> node_set_entries, element_set_entries;
+};
+
 /// A mesh read in pieces: the outline every rank has and this rank's piece.
 struct MeshPiece {
   MeshOutline outline;
@@ -68,6 +75,14 @@ MeshOutline outline_of(const SerialMesh& mesh);
 /// The piece of `mesh` made of its elements [first, end), with their set entries in the order ElementPiece
 /// gives: what a rank holds when it reads that element range of the mesh's file.
 ElementPiece element_range_piece(const SerialMesh& mesh, GlobalId first, GlobalId end);
+/// The piece of `mesh` made of `elements` (global ids, in that order).
+ElementPiece piece_of_elements(const SerialMesh& mesh, const std::vector<GlobalId>& elements);
+/// The set entries of `elements` (global ids) of `mesh`.
+SetEntries set_entries_of(const SerialMesh& mesh, const std::vector<GlobalId>& elements);
+
+/// check_mesh's element checks on the elements of `piece` (nodes below num_nodes and distinct, vertices not
+/// collinear), naming elements and nodes by their positions + 1. InputError naming piece.source.
+void check_piece_elements(const ElementPiece& piece, GlobalId num_nodes);
 
 /// Sorts entries by (member, set) and removes repeats; side entries by (element, local edge, set), repeats kept
 /// as a side set keeps them.

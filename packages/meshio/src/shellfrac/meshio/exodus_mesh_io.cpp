@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
-#include <new>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -27,18 +26,18 @@ class ExodusMeshReader {
   explicit ExodusMeshReader(const std::string& path) : path_(path) {}
 
   mesh::SerialMesh read() {
-    std::uint64_t stored_bytes = 0;
-    exodus::File file = detail::open_checked_exodus(path_, stored_bytes);
-    id_ = file.id();
-    o_ = detail::read_exodus_outline(id_, path_, stored_bytes);
-    m_.source = path_;
-    m_.nodes_per_element = o_.nodes_per_element;
-    read_id_maps();
-    read_coordinates();
-    read_blocks();
-    read_node_sets();
-    read_side_sets();
-    read_element_sets();
+    detail::read_exodus_file(path_, [&](int exo_id, detail::ExodusOutline& outline) {
+      id_ = exo_id;
+      o_ = std::move(outline);
+      m_.source = path_;
+      m_.nodes_per_element = o_.nodes_per_element;
+      read_id_maps();
+      read_coordinates();
+      read_blocks();
+      read_node_sets();
+      read_side_sets();
+      read_element_sets();
+    });
     return std::move(m_);
   }
 
@@ -93,19 +92,10 @@ class ExodusMeshReader {
       SHELLFRAC_EXO_INPUT_CHECK(ex_get_conn(id_, EX_ELEM_BLOCK, b.id, conn.data(), nullptr, nullptr),
                                 path_ << ": cannot read the connectivity of " << b.what);
       for (std::size_t k = 0; k < conn.size(); ++k)
-        m_.connectivity.push_back(detail::checked_node(conn[k], static_cast<std::int64_t>(k), npe, b, o_.num_nodes, path_));
+        m_.connectivity.push_back(
+            detail::checked_node(conn[k], static_cast<std::int64_t>(k), npe, b, o_.num_nodes, path_));
       m_.element_block.insert(m_.element_block.end(), static_cast<std::size_t>(b.count), block_index);
     }
-  }
-
-  /// Reads one set's entries (and extra list for side sets) as 1-based file values.
-  void get_set(ex_entity_type type, const detail::ExodusSet& set, std::vector<std::int64_t>& entries,
-               std::vector<std::int64_t>* extra) const {
-    entries.assign(static_cast<std::size_t>(set.count), 0);
-    if (extra) extra->assign(static_cast<std::size_t>(set.count), 0);
-    if (set.count > 0)
-      SHELLFRAC_EXO_INPUT_CHECK(ex_get_set(id_, type, set.id, entries.data(), extra ? extra->data() : nullptr),
-                                path_ << ": cannot read the entries of " << set.what);
   }
 
   /// Node or element sets: each a sorted list of 0-based indices (`members`) below `n`.
@@ -117,7 +107,7 @@ class ExodusMeshReader {
       Set set;
       set.name = s.name;
       set.id = static_cast<int>(s.id);
-      get_set(type, s, entries, nullptr);
+      detail::read_set(id_, type, s, entries, nullptr, path_);
       auto& list = set.*members;
       list.reserve(entries.size());
       for (auto x : entries) list.push_back(detail::checked_index(x, n, path_, s.what, entity));
@@ -137,7 +127,7 @@ class ExodusMeshReader {
       mesh::SideSet ss;
       ss.name = s.name;
       ss.id = static_cast<int>(s.id);
-      get_set(EX_SIDE_SET, s, elems, &sides);
+      detail::read_set(id_, EX_SIDE_SET, s, elems, &sides, path_);
       for (std::size_t k = 0; k < elems.size(); ++k) {
         const int edge = detail::local_edge_of_side(o_, elems[k], sides[k], path_, s.what);
         ss.elements.push_back(elems[k] - 1);
@@ -266,14 +256,7 @@ void put_sets(int id, const mesh::SerialMesh& mesh, const std::vector<std::int64
 }  // namespace
 
 mesh::SerialMesh read_exodus_mesh(const std::string& path) {
-  mesh::SerialMesh m;
-  try {
-    m = ExodusMeshReader(path).read();
-  } catch (const std::bad_alloc&) {
-    detail::declared_too_much(path);
-  } catch (const std::length_error&) {
-    detail::declared_too_much(path);
-  }
+  mesh::SerialMesh m = ExodusMeshReader(path).read();
   mesh::check_mesh(m);
   return m;
 }

@@ -1,6 +1,8 @@
 #include "shellfrac/meshio/exodus_outline.hpp"
 
 #include <filesystem>
+#include <new>
+#include <stdexcept>
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/meshio/exodus_file_checks.hpp"
@@ -233,9 +235,55 @@ int local_edge_of_side(const ExodusOutline& o, std::int64_t e, std::int64_t side
   return static_cast<int>(side - first);
 }
 
-void declared_too_much(const std::string& path) {
-  SHELLFRAC_INPUT_REQUIRE(false, path << ": the Exodus file declares more data than fits in memory");
-  throw InputError(path);  // not reached
+void read_set(int exo_id, ex_entity_type type, const ExodusSet& set, std::vector<std::int64_t>& entries,
+              std::vector<std::int64_t>* extra, const std::string& path) {
+  entries.assign(static_cast<std::size_t>(set.count), 0);
+  if (extra) extra->assign(static_cast<std::size_t>(set.count), 0);
+  if (set.count > 0)
+    SHELLFRAC_EXO_INPUT_CHECK(ex_get_set(exo_id, type, set.id, entries.data(), extra ? extra->data() : nullptr),
+                              path << ": cannot read the entries of " << set.what);
+}
+
+mesh::MeshOutline mesh_outline_of(const ExodusOutline& o, const std::string& path) {
+  mesh::MeshOutline m;
+  m.nodes_per_element = o.nodes_per_element;
+  m.num_elements = o.num_elements;
+  m.num_nodes = o.num_nodes;
+  m.source = path;
+  for (const auto& b : o.blocks) m.blocks.push_back({b.name, static_cast<int>(b.id)});
+  const auto labels = [](const std::vector<ExodusSet>& sets) {
+    std::vector<mesh::SetLabel> v;
+    for (const auto& s : sets) v.push_back({s.name, static_cast<int>(s.id)});
+    return v;
+  };
+  m.node_sets = labels(o.node_sets);
+  m.side_sets = labels(o.side_sets);
+  m.element_sets = labels(o.element_sets);
+  const auto ids_and_names = [](const auto& labels) {
+    std::vector<std::pair<int, std::string>> v;
+    for (const auto& s : labels) v.emplace_back(s.id, s.name);
+    return v;
+  };
+  mesh::check_ids_and_names(ids_and_names(m.blocks), "element block", path);
+  mesh::check_ids_and_names(ids_and_names(m.node_sets), "node set", path);
+  mesh::check_ids_and_names(ids_and_names(m.side_sets), "side set", path);
+  mesh::check_ids_and_names(ids_and_names(m.element_sets), "element set", path);
+  return m;
+}
+
+void read_exodus_file(const std::string& path, const std::function<void(int, ExodusOutline&)>& read) {
+  bool too_much = false;
+  try {
+    std::uint64_t stored_bytes = 0;
+    exodus::File file = open_checked_exodus(path, stored_bytes);
+    ExodusOutline outline = read_exodus_outline(file.id(), path, stored_bytes);
+    read(file.id(), outline);
+  } catch (const std::bad_alloc&) {
+    too_much = true;
+  } catch (const std::length_error&) {
+    too_much = true;
+  }
+  SHELLFRAC_INPUT_REQUIRE(!too_much, path << ": the Exodus file declares more data than fits in memory");
 }
 
 }  // namespace shellfrac::meshio::detail

@@ -5,11 +5,13 @@
 /// against the header's counts and, for a netCDF classic file, against the file's size before anything is
 /// allocated from them. Internal to shellfrac::meshio.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "shellfrac/core/types.hpp"
 #include "shellfrac/exodus/exodus_api.hpp"
+#include "shellfrac/mesh/mesh_piece.hpp"
 
 namespace shellfrac::meshio::detail {
 
@@ -63,8 +65,15 @@ GlobalId checked_index(std::int64_t value, std::int64_t n, const std::string& pa
 int local_edge_of_side(const ExodusOutline& o, std::int64_t e, std::int64_t side, const std::string& path,
                        const std::string& what);
 
-/// Throws InputError naming `path` for allocation failures of the readers (a header that declares more than
-/// fits in memory).
-[[noreturn]] void declared_too_much(const std::string& path);
+/// The entries (1-based file values) of set `set` of `type`, and for a side set its side numbers in `extra`.
+void read_set(int exo_id, ex_entity_type type, const ExodusSet& set, std::vector<std::int64_t>& entries,
+              std::vector<std::int64_t>* extra, const std::string& path);
+
+/// The mesh outline of the file's outline: counts, blocks, set names and ids (checked as check_mesh checks them).
+mesh::MeshOutline mesh_outline_of(const ExodusOutline& o, const std::string& path);
+
+/// Opens `path` (open_checked_exodus), reads its outline and runs read(exo_id, outline); the file is closed after.
+/// An allocation failure (a header that declares more than fits in memory) is an InputError naming `path`.
+void read_exodus_file(const std::string& path, const std::function<void(int, ExodusOutline&)>& read);
 
 }  // namespace shellfrac::meshio::detail

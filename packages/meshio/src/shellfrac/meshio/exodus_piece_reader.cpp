@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <new>
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
@@ -43,55 +42,27 @@ class PieceReader {
     parallel::on_all_then_agree([&] { read_own_ranges(); }, comm_);
     deliver_set_entries();
     deliver_node_data();
-    parallel::on_all_then_agree([&] { check_elements(); }, comm_);
+    parallel::on_all_then_agree([&] { mesh::check_piece_elements(out_.piece, o_.num_nodes); }, comm_);
     return std::move(out_);
   }
 
  private:
   /// Everything this rank reads of the file: the outline, its elements, its nodes, its slices of the sets.
   void read_own_ranges() {
-    try {
-      std::uint64_t stored_bytes = 0;
-      exodus::File file = detail::open_checked_exodus(path_, stored_bytes);
-      id_ = file.id();
-      o_ = detail::read_exodus_outline(id_, path_, stored_bytes);
+    detail::read_exodus_file(path_, [&](int exo_id, detail::ExodusOutline& outline) {
+      id_ = exo_id;
+      o_ = std::move(outline);
       make_outline();
       read_elements();
       read_node_share();
       read_side_set_slices();
       read_node_set_slices();
       read_element_set_slices();
-    } catch (const std::bad_alloc&) {
-      detail::declared_too_much(path_);
-    } catch (const std::length_error&) {
-      detail::declared_too_much(path_);
-    }
+    });
   }
 
   void make_outline() {
-    mesh::MeshOutline& m = out_.outline;
-    m.nodes_per_element = o_.nodes_per_element;
-    m.num_elements = o_.num_elements;
-    m.num_nodes = o_.num_nodes;
-    m.source = path_;
-    for (const auto& b : o_.blocks) m.blocks.push_back({b.name, static_cast<int>(b.id)});
-    const auto labels = [](const std::vector<detail::ExodusSet>& sets) {
-      std::vector<mesh::SetLabel> v;
-      for (const auto& s : sets) v.push_back({s.name, static_cast<int>(s.id)});
-      return v;
-    };
-    m.node_sets = labels(o_.node_sets);
-    m.side_sets = labels(o_.side_sets);
-    m.element_sets = labels(o_.element_sets);
-    const auto ids_and_names = [](const auto& labels) {
-      std::vector<std::pair<int, std::string>> v;
-      for (const auto& s : labels) v.emplace_back(s.id, s.name);
-      return v;
-    };
-    mesh::check_ids_and_names(ids_and_names(m.blocks), "element block", path_);
-    mesh::check_ids_and_names(ids_and_names(m.node_sets), "node set", path_);
-    mesh::check_ids_and_names(ids_and_names(m.side_sets), "side set", path_);
-    mesh::check_ids_and_names(ids_and_names(m.element_sets), "element set", path_);
+    out_.outline = detail::mesh_outline_of(o_, path_);
     out_.piece.nodes_per_element = o_.nodes_per_element;
     out_.piece.source = path_;
   }
@@ -245,18 +216,6 @@ class PieceReader {
     p.node_set_entries = parallel::exchange(std::move(entries), counts, comm_);
     p.coords.resize(p.nodes.size());
     for (std::size_t i = 0; i < p.nodes.size(); ++i) p.coords[i] = wanted_coords[position_in(wanted, p.nodes[i])];
-  }
-
-  /// check_mesh's element checks, on this rank's elements (with positions for the element and node numbers).
-  void check_elements() const {
-    const mesh::ElementPiece& p = out_.piece;
-    const int npe = p.nodes_per_element;
-    const mesh::FileIds positions;
-    for (std::size_t i = 0; i < p.elements.size(); ++i) {
-      const std::size_t at = i * static_cast<std::size_t>(npe);
-      mesh::check_element_nodes(p.elements[i], &p.nodes[at], npe, o_.num_nodes, positions, positions, path_);
-      mesh::check_element_area(p.elements[i], p.coords[at], p.coords[at + 1], p.coords[at + 2], positions, path_);
-    }
   }
 
   const std::string& path_;
