@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "shellfrac/core/error.hpp"
@@ -20,6 +21,7 @@
 #include "shellfrac/decomposition/partitioner.hpp"
 #include "shellfrac/mesh/edge_topology.hpp"
 #include "shellfrac/mesh/generators.hpp"
+#include "shellfrac/mesh/mesh_piece.hpp"
 
 namespace {
 
@@ -45,7 +47,10 @@ Case make_case(const std::string& name, mesh::SerialMesh m, const std::string& m
 
 std::vector<Case> cases() {
   std::vector<Case> v;
-  v.push_back(make_case("rectangle/METIS", mesh::make_rectangle(2.0, 1.0, 10, 6)));
+  auto rectangle = mesh::make_rectangle(2.0, 1.0, 10, 6);
+  rectangle.element_sets.push_back({"patch", 1, {0, 7, 8, 50, 119}});
+  rectangle.side_sets.push_back({"inner", 9, {3, 10, 20, 20}, {1, 2, 0, 1}});  // interior edges
+  v.push_back(make_case("rectangle/METIS", std::move(rectangle)));
   v.push_back(make_case("cylinder/scotch", mesh::make_cylinder(1.0, 3.0, 8, 8), "Zoltan2"));
   auto p2 = mesh::make_cylindrical_panel(1.0, 2.0, 1.5, 6, 5, mesh::DiagonalPattern::Alternating);
   mesh::promote_to_p2(p2);
@@ -336,22 +341,11 @@ TEST(DistributedMesh, RejectsBadPartition) {
 mesh::ElementPiece piece_of(const Case& c, bool round_robin) {
   const int me = parallel::rank(), P = parallel::size();
   const GlobalId ne = c.mesh.num_elements();
-  mesh::ElementPiece piece;
-  piece.nodes_per_element = c.mesh.nodes_per_element;
+  std::vector<GlobalId> elements;
+  for (GlobalId e = 0; e < ne; ++e)
+    if ((round_robin ? int(e % P) : int(e * P / ne)) == me) elements.push_back(e);
+  mesh::ElementPiece piece = mesh::piece_of_elements(c.mesh, elements);
   piece.source = c.name;
-  for (GlobalId e = 0; e < ne; ++e) {
-    if ((round_robin ? int(e % P) : int(e * P / ne)) != me) continue;
-    piece.elements.push_back(e);
-    piece.blocks.push_back(c.mesh.element_block[std::size_t(e)]);
-    for (int a = 0; a < c.mesh.nodes_per_element; ++a)
-      piece.nodes.push_back(c.mesh.node(e, a)), piece.coords.push_back(c.mesh.coords[std::size_t(c.mesh.node(e, a))]);
-  }
-  for (std::size_t s = 0; s < c.mesh.side_sets.size(); ++s)
-    for (std::size_t i = 0; i < c.mesh.side_sets[s].elements.size(); ++i) {
-      const GlobalId e = c.mesh.side_sets[s].elements[i];
-      if (std::binary_search(piece.elements.begin(), piece.elements.end(), e))
-        piece.side_entries.push_back({e, c.mesh.side_sets[s].local_edges[i], int(s)});
-    }
   return piece;
 }
 
@@ -384,6 +378,18 @@ void expect_same_view(const DistributedMesh& a, const DistributedMesh& b, const 
     EXPECT_TRUE(x.element == y.element && x.local_edge == y.local_edge && x.side_sets == y.side_sets) << what << i;
   }
   EXPECT_EQ(a.maps().send_rows, b.maps().send_rows) << what;
+  const auto &sa = a.overlap_set_entries(), &sb = b.overlap_set_entries();
+  const auto side_key = [](const mesh::SideEntry& x) { return std::tie(x.element, x.local_edge, x.side_set); };
+  const auto set_key = [](const mesh::SetEntry& x) { return std::tie(x.member, x.set); };
+  ASSERT_EQ(sa.side_entries.size(), sb.side_entries.size()) << what;
+  for (std::size_t i = 0; i < sa.side_entries.size(); ++i)
+    EXPECT_TRUE(side_key(sa.side_entries[i]) == side_key(sb.side_entries[i])) << what << " side entry " << i;
+  ASSERT_EQ(sa.node_set_entries.size(), sb.node_set_entries.size()) << what;
+  for (std::size_t i = 0; i < sa.node_set_entries.size(); ++i)
+    EXPECT_TRUE(set_key(sa.node_set_entries[i]) == set_key(sb.node_set_entries[i])) << what << " node entry " << i;
+  ASSERT_EQ(sa.element_set_entries.size(), sb.element_set_entries.size()) << what;
+  for (std::size_t i = 0; i < sa.element_set_entries.size(); ++i)
+    EXPECT_TRUE(set_key(sa.element_set_entries[i]) == set_key(sb.element_set_entries[i])) << what << " element " << i;
 }
 
 TEST(DistributedMesh, PiecesOfTheMeshGiveTheViewOfTheWholeMesh) {

@@ -190,6 +190,7 @@ DistributedMesh::DistributedMesh(const mesh::SerialMesh& mesh, const mesh::EdgeT
     if (i < topo.boundary_side_sets.size()) lb.side_sets = topo.boundary_side_sets[i];
     boundary_.push_back(std::move(lb));
   }
+  overlap_sets_ = mesh::set_entries_of(mesh, element_gid_);
 
   maps_ = make_maps(element_gid_, num_owned_, ne, comm_);
 }
@@ -241,6 +242,7 @@ DistributedMesh::DistributedMesh(const ElementPiece& piece, const LocalTopology&
   }
   for (MigratedBoundary& b : m.boundary)
     boundary_.push_back({local_id(b.side.element), b.side.local_edge, std::move(b.side_sets)});
+  overlap_sets_ = std::move(m.sets);
   maps_ = make_maps(element_gid_, num_owned_, num_global_elements_, comm_);
 }
 

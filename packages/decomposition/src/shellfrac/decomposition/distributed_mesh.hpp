@@ -21,10 +21,10 @@
 
 #include "shellfrac/core/types.hpp"
 #include "shellfrac/mesh/edge_topology.hpp"
+#include "shellfrac/mesh/mesh_piece.hpp"
 
 namespace shellfrac::mesh {
 struct SerialMesh;
-struct ElementPiece;  // mesh_piece.hpp
 }
 
 namespace shellfrac::decomposition {
@@ -112,6 +112,11 @@ class DistributedMesh {
   /// Boundary edges of owned elements.
   const std::vector<LocalBoundaryEdge>& boundary_edges() const { return boundary_; }
 
+  /// The set entries of the overlap elements (owned and ghosts): the side-set entries of their edges, interior
+  /// edges included, the node-set entries of their mesh nodes, their element-set entries (set indices into the
+  /// mesh's sets; mesh/mesh_piece.hpp).
+  const mesh::SetEntries& overlap_set_entries() const { return overlap_sets_; }
+
   /// Tpetra maps and Imports (include shellfrac/decomposition/element_maps.hpp to use).
   const ElementMaps& maps() const { return *maps_; }
 
@@ -128,6 +133,7 @@ class DistributedMesh {
   std::vector<int> neighbor_edge_;
   std::vector<LocalInterface> interfaces_;
   std::vector<LocalBoundaryEdge> boundary_;
+  mesh::SetEntries overlap_sets_;
   std::unique_ptr<ElementMaps> maps_;
 };
 

@@ -180,13 +180,11 @@ std::vector<MigratedBoundary> migrated_boundary(const ElementPiece& piece, const
   return out;
 }
 
-/// Every element of the piece, to its owner and to each rank that owns an element across one of its interfaces (the
-/// ghost layer); what comes here, owned elements by id first, then the ghosts by id. Collective.
-std::vector<MigratedElement> migrated_elements(const ElementPiece& piece, const LocalTopology& topo,
-                                               const std::vector<int>& part, const KnownParts& parts, MPI_Comm comm) {
-  const int me = parallel::rank(comm);
-  const std::size_t npe = std::size_t(piece.nodes_per_element);
-  std::vector<std::pair<int, int>> destinations;  // (element index, rank)
+/// (element index in the piece, rank) for every element of the piece and every rank that holds it: its owner and each
+/// rank that owns an element across one of its interfaces (the ghost layer). By element index, then rank.
+std::vector<std::pair<int, int>> element_destinations(const ElementPiece& piece, const LocalTopology& topo,
+                                                      const std::vector<int>& part, const KnownParts& parts) {
+  std::vector<std::pair<int, int>> destinations;
   for (std::size_t i = 0; i < piece.elements.size(); ++i) destinations.push_back({int(i), part[i]});
   for (const auto& f : topo.interfaces) {
     const int m = parts.index(f.minus.element), p = parts.index(f.plus.element);
@@ -195,6 +193,66 @@ std::vector<MigratedElement> migrated_elements(const ElementPiece& piece, const 
   }
   std::sort(destinations.begin(), destinations.end());
   destinations.erase(std::unique(destinations.begin(), destinations.end()), destinations.end());
+  return destinations;
+}
+
+/// The entries of `entries` (sorted by key(entry)) whose key is k.
+template <class Entry, class Key>
+std::pair<typename std::vector<Entry>::const_iterator, typename std::vector<Entry>::const_iterator> entries_of(
+    const std::vector<Entry>& entries, GlobalId k, Key key) {
+  const auto lo =
+      std::lower_bound(entries.begin(), entries.end(), k, [&](const Entry& x, GlobalId v) { return key(x) < v; });
+  const auto hi = std::upper_bound(lo, entries.end(), k, [&](GlobalId v, const Entry& x) { return v < key(x); });
+  return {lo, hi};
+}
+
+/// The set entries of every element of the piece go where the element goes (`destinations`): its side and element
+/// set entries, and the node set entries of its nodes. What comes here: the set entries of this rank's overlap.
+/// Collective.
+mesh::SetEntries migrated_sets(const ElementPiece& piece, const std::vector<std::pair<int, int>>& destinations,
+                               MPI_Comm comm) {
+  const auto P = static_cast<std::size_t>(parallel::size(comm));
+  const std::size_t npe = std::size_t(piece.nodes_per_element);
+  std::vector<std::vector<SideEntry>> sides(P);
+  std::vector<std::vector<mesh::SetEntry>> node_entries(P), element_entries(P);
+  const auto side_key = [](const SideEntry& x) { return x.element; };
+  const auto member_key = [](const mesh::SetEntry& x) { return x.member; };
+  const auto sorted = [](const auto& v, auto key) {
+    return std::is_sorted(v.begin(), v.end(), [&](const auto& x, const auto& y) { return key(x) < key(y); });
+  };
+  SHELLFRAC_REQUIRE(sorted(piece.side_entries, side_key) && sorted(piece.node_set_entries, member_key) &&
+                        sorted(piece.element_set_entries, member_key),
+                    piece.source << ": the set entries of the piece are not sorted (mesh::ElementPiece)");
+  for (const auto& [i, rank] : destinations) {
+    const GlobalId e = piece.elements[std::size_t(i)];
+    const auto q = std::size_t(rank);
+    const auto [s0, s1] = entries_of(piece.side_entries, e, side_key);
+    sides[q].insert(sides[q].end(), s0, s1);
+    const auto [e0, e1] = entries_of(piece.element_set_entries, e, member_key);
+    element_entries[q].insert(element_entries[q].end(), e0, e1);
+    for (std::size_t a = 0; a < npe; ++a) {
+      const auto [n0, n1] = entries_of(piece.node_set_entries, piece.nodes[std::size_t(i) * npe + a], member_key);
+      node_entries[q].insert(node_entries[q].end(), n0, n1);
+    }
+  }
+  mesh::SetEntries out;
+  std::vector<int> counts;
+  out.side_entries = parallel::exchange(std::move(sides), counts, comm);
+  out.node_set_entries = parallel::exchange(std::move(node_entries), counts, comm);
+  out.element_set_entries = parallel::exchange(std::move(element_entries), counts, comm);
+  mesh::sort_side_entries(out.side_entries);
+  mesh::sort_set_entries(out.node_set_entries);
+  mesh::sort_set_entries(out.element_set_entries);
+  return out;
+}
+
+/// Every element of the piece where `destinations` sends it; what comes here, owned elements by id first, then the
+/// ghosts by id. Collective.
+std::vector<MigratedElement> migrated_elements(const ElementPiece& piece, const LocalTopology& topo,
+                                               const std::vector<int>& part,
+                                               const std::vector<std::pair<int, int>>& destinations, MPI_Comm comm) {
+  const int me = parallel::rank(comm);
+  const std::size_t npe = std::size_t(piece.nodes_per_element);
   const std::vector<Vec3> directors =
       local_vertex_normals(piece.elements, piece.nodes_per_element, piece.nodes, piece.coords, piece.source, comm);
   std::vector<std::vector<MigratedElement>> send(static_cast<std::size_t>(parallel::size(comm)));
@@ -226,7 +284,9 @@ MigratedPart migrate_elements(const ElementPiece& piece, const LocalTopology& to
   out.num_global_elements = checked_size(piece, part, comm);
   const int me = parallel::rank(comm);
   const KnownParts parts(piece, topo, part, out.num_global_elements, comm);
-  out.elements = migrated_elements(piece, topo, part, parts, comm);
+  const auto destinations = element_destinations(piece, topo, part, parts);
+  out.elements = migrated_elements(piece, topo, part, destinations, comm);
+  out.sets = migrated_sets(piece, destinations, comm);
   out.num_owned = LocalId(std::count_if(out.elements.begin(), out.elements.end(),
                                         [me](const MigratedElement& x) { return x.owner == me; }));
   // An interface goes from the rank that holds its minus side to the owners of its two sides.

@@ -47,6 +47,7 @@ struct MigratedPart {
   std::vector<MigratedElement> elements;      ///< owned elements by ascending id, then the ghosts by ascending id
   std::vector<MigratedInterface> interfaces;  ///< every interface with a side owned here, by ascending id
   std::vector<MigratedBoundary> boundary;     ///< the boundary entries of the owned elements, by ascending id
+  mesh::SetEntries sets;                      ///< the set entries of all the elements above (owned and ghosts)
 };
 
 /// Sends every element of `piece` (whose topology is `topo`, build_local_topology) to the rank part[i] that owns it

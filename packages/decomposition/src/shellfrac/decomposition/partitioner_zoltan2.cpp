@@ -13,7 +13,6 @@
 #include <Zoltan2_XpetraCrsGraphAdapter.hpp>
 #include <Zoltan2_XpetraMultiVectorAdapter.hpp>
 #include <dlfcn.h>
-
 #include <algorithm>
 #include <cstdlib>
 
@@ -53,7 +52,8 @@ void reset_random_states() {
   using seed_type = void (*)(unsigned int, unsigned int*);
   if (auto scotch = reinterpret_cast<reset_type>(dlsym(RTLD_DEFAULT, "SCOTCH_randomReset"))) scotch();
   constexpr unsigned int zoltan_initial_seed = 123456789U;  // ZOLTAN_RAND_INIT of zoltan/src/zz/zz_rand.h
-  if (auto zoltan = reinterpret_cast<seed_type>(dlsym(RTLD_DEFAULT, "Zoltan_Srand"))) zoltan(zoltan_initial_seed, nullptr);
+  if (auto zoltan = reinterpret_cast<seed_type>(dlsym(RTLD_DEFAULT, "Zoltan_Srand")))
+    zoltan(zoltan_initial_seed, nullptr);
 }
 
 /// Runs the Zoltan2 problem on `adapter` and returns the part of each local row (adapter order).
