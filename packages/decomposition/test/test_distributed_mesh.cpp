@@ -50,6 +50,7 @@ std::vector<Case> cases() {
   auto rectangle = mesh::make_rectangle(2.0, 1.0, 10, 6);
   rectangle.element_sets.push_back({"patch", 1, {0, 7, 8, 50, 119}});
   rectangle.side_sets.push_back({"inner", 9, {3, 10, 20, 20}, {1, 2, 0, 1}});  // interior edges
+  for (GlobalId e = 0; e < rectangle.num_elements(); ++e) rectangle.element_ids.ids.push_back(1000 + 3 * e);
   v.push_back(make_case("rectangle/METIS", std::move(rectangle)));
   v.push_back(make_case("cylinder/scotch", mesh::make_cylinder(1.0, 3.0, 8, 8), "Zoltan2"));
   auto p2 = mesh::make_cylindrical_panel(1.0, 2.0, 1.5, 6, 5, mesh::DiagonalPattern::Alternating);
@@ -359,6 +360,7 @@ void expect_same_view(const DistributedMesh& a, const DistributedMesh& b, const 
   EXPECT_EQ(a.neighbor_edges(), b.neighbor_edges()) << what;
   for (LocalId le = 0; le < a.num_overlap(); ++le) {
     EXPECT_EQ(a.element_owner(le), b.element_owner(le)) << what;
+    EXPECT_EQ(a.element_file_id(le), b.element_file_id(le)) << what;
     for (int n = 0; n < a.nodes_per_element(); ++n) {
       EXPECT_EQ(a.mesh_node(le, n), b.mesh_node(le, n)) << what;
       EXPECT_EQ(a.node_coords(le, n), b.node_coords(le, n)) << what;

@@ -2,6 +2,7 @@
 // mesh read by read_exodus_mesh: each rank's piece is exactly mesh::element_range_piece of the whole mesh for its
 // element share [r W, (r + 1) W), W = ceil(N / P) (the same ids, blocks, nodes, coordinate bits and set entries),
 // and the outline is the whole mesh's. A file the serial reader refuses is refused on every rank with its message.
+#include <exodusII.h>
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -26,6 +27,19 @@ std::string written(const mesh::SerialMesh& m, const std::string& name) {
   if (parallel::rank() == 0) meshio::write_exodus_mesh(m, path);
   MPI_Barrier(MPI_COMM_WORLD);
   return path;
+}
+
+/// `path`, rewritten with the element id map `ids` (by position), by rank 0.
+void put_element_id_map(const std::string& path, const std::vector<std::int64_t>& ids) {
+  if (parallel::rank() == 0) {
+    int cpu_ws = 8, io_ws = 0;
+    float version = 0;
+    const int id = ex_open(path.c_str(), EX_WRITE | EX_ALL_INT64_API, &cpu_ws, &io_ws, &version);
+    ASSERT_GE(id, 0);
+    ASSERT_GE(ex_put_id_map(id, EX_ELEM_MAP, ids.data()), 0);
+    ASSERT_GE(ex_close(id), 0);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
 }
 
 /// Two blocks (a rectangle beside a cylindrical panel's elements renumbered after it), every kind of set.
@@ -74,6 +88,7 @@ void expect_same_piece(const mesh::ElementPiece& a, const mesh::ElementPiece& b)
                       [](const mesh::SideEntry& x) { return std::tie(x.element, x.local_edge, x.side_set); }));
   EXPECT_TRUE(same_by(a.node_set_entries, b.node_set_entries, set_entry_key));
   EXPECT_TRUE(same_by(a.element_set_entries, b.element_set_entries, set_entry_key));
+  EXPECT_EQ(a.element_file_ids, b.element_file_ids);
   EXPECT_EQ(a.source, b.source);
 }
 
@@ -131,10 +146,41 @@ void expect_refused_alike(const std::string& path) {
   }
 }
 
+TEST(ExodusPieceReader, AnElementIdMapIsReadAndChecked) {
+  // The file's element ids come with the elements (messages and history name elements by them); an id map that is
+  // the identity is dropped, as the serial reader drops it.
+  const auto m = two_blocks(false);
+  const GlobalId n = m.num_elements();
+  const std::string path = written(m, "piece_ids");
+  std::vector<std::int64_t> ids(static_cast<std::size_t>(n));
+  for (GlobalId e = 0; e < n; ++e) ids[std::size_t(e)] = e + 1;
+  put_element_id_map(path, ids);
+  expect_piece_of_whole_mesh(path);
+  EXPECT_TRUE(meshio::read_exodus_piece(path, MPI_COMM_WORLD).piece.element_file_ids.empty());
+  for (GlobalId e = 0; e < n; ++e) ids[std::size_t(e)] = 5000 + 2 * (n - e);
+  put_element_id_map(path, ids);
+  expect_piece_of_whole_mesh(path);
+  EXPECT_FALSE(meshio::read_exodus_piece(path, MPI_COMM_WORLD).piece.element_file_ids.empty());
+}
+
 TEST(ExodusPieceReader, RefusesWhatTheSerialReaderRefuses) {
   auto degenerate = mesh::make_rectangle(1.0, 1.0, 4, 4);
   degenerate.coords[degenerate.node(13, 2)] = degenerate.coords[degenerate.node(13, 0)];  // a collapsed element
   expect_refused_alike(written(degenerate, "piece_degenerate"));
+
+  // The same element named by its id in the file, and ids given twice or not positive.
+  const GlobalId n = degenerate.num_elements();
+  std::vector<std::int64_t> ids(static_cast<std::size_t>(n));
+  for (GlobalId e = 0; e < n; ++e) ids[std::size_t(e)] = 7000 + e;
+  const std::string with_ids = written(degenerate, "piece_degenerate_ids");
+  put_element_id_map(with_ids, ids);
+  expect_refused_alike(with_ids);
+  ids[25] = ids[3], ids[30] = ids[2];  // two ids given twice: the smaller one is named
+  put_element_id_map(with_ids, ids);
+  expect_refused_alike(with_ids);
+  ids[17] = -4;
+  put_element_id_map(with_ids, ids);
+  expect_refused_alike(with_ids);
 
   auto bad_side = mesh::make_rectangle(1.0, 1.0, 4, 4);
   bad_side.side_sets.back().local_edges.back() = 5;  // written as side 8 of a TRISHELL3

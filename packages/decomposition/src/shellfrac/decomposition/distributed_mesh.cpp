@@ -191,6 +191,8 @@ DistributedMesh::DistributedMesh(const mesh::SerialMesh& mesh, const mesh::EdgeT
     boundary_.push_back(std::move(lb));
   }
   overlap_sets_ = mesh::set_entries_of(mesh, element_gid_);
+  if (!mesh.element_ids.empty())
+    for (GlobalId g : element_gid_) element_file_ids_.push_back(mesh.element_ids.ids[std::size_t(g)]);
 
   maps_ = make_maps(element_gid_, num_owned_, ne, comm_);
 }
@@ -206,6 +208,8 @@ DistributedMesh::DistributedMesh(const ElementPiece& piece, const LocalTopology&
   num_owned_ = m.num_owned;
   const std::size_t nov = m.elements.size(), npe = std::size_t(npe_);
   for (const MigratedElement& r : m.elements) element_gid_.push_back(r.gid);
+  if (parallel::any(!piece.element_file_ids.empty(), comm_))  // the same on every rank
+    for (const MigratedElement& r : m.elements) element_file_ids_.push_back(r.file_id);
   element_owner_.resize(nov);
   element_block_.resize(nov);
   coords_.resize(nov * npe);

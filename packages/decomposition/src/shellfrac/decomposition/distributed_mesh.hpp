@@ -76,6 +76,10 @@ class DistributedMesh {
   /// Global id of overlap element le (owned first, then ghosts).
   GlobalId element_gid(LocalId le) const { return element_gid_[le]; }
   const std::vector<GlobalId>& element_gids() const { return element_gid_; }
+  /// The id of overlap element le in the mesh file's element id map (mesh::FileIds), gid + 1 without one.
+  std::int64_t element_file_id(LocalId le) const {
+    return element_file_ids_.empty() ? element_gid_[le] + 1 : element_file_ids_[le];
+  }
   /// Owning rank of overlap element le.
   int element_owner(LocalId le) const { return element_owner_[le]; }
   /// Block index (into SerialMesh::blocks) of overlap element le.
@@ -126,6 +130,7 @@ class DistributedMesh {
   GlobalId num_global_elements_ = 0;
   LocalId num_owned_ = 0;
   std::vector<GlobalId> element_gid_;
+  std::vector<std::int64_t> element_file_ids_;  ///< empty: the file numbers its elements by position
   std::vector<int> element_owner_, element_block_;
   std::vector<Vec3> coords_, directors_;
   std::vector<GlobalId> mesh_node_;

@@ -260,6 +260,7 @@ std::vector<MigratedElement> migrated_elements(const ElementPiece& piece, const 
     const std::size_t e = std::size_t(i);
     MigratedElement r;
     r.gid = piece.elements[e];
+    r.file_id = piece.element_file_ids.empty() ? 0 : piece.element_file_ids[e];
     r.owner = part[e];
     r.block = piece.blocks[e];
     for (std::size_t a = 0; a < npe; ++a)

@@ -20,6 +20,7 @@ using mesh::SideEntry;
 /// An element of a rank's overlap, with what the distributed mesh keeps of it.
 struct MigratedElement {
   GlobalId gid = -1;
+  std::int64_t file_id = 0;  ///< its id in the mesh file's element id map, 0 without one
   int owner = -1, block = -1;
   GlobalId nodes[num_nodes_tri6] = {};
   Vec3 coords[num_nodes_tri6] = {};

@@ -49,6 +49,8 @@ ElementPiece piece_of_elements(const SerialMesh& mesh, const std::vector<GlobalI
       p.coords.push_back(mesh.coords[static_cast<std::size_t>(mesh.node(e, a))]);
     }
   }
+  if (!mesh.element_ids.empty())
+    for (GlobalId e : elements) p.element_file_ids.push_back(mesh.element_ids.ids[static_cast<std::size_t>(e)]);
   SetEntries sets = set_entries_of(mesh, elements);
   p.side_entries = std::move(sets.side_entries);
   p.node_set_entries = std::move(sets.node_set_entries);
@@ -87,9 +89,10 @@ void check_piece_elements(const ElementPiece& piece, GlobalId num_nodes) {
   const FileIds positions;
   for (std::size_t i = 0; i < piece.elements.size(); ++i) {
     const std::size_t at = i * static_cast<std::size_t>(npe);
-    check_element_nodes(piece.elements[i], &piece.nodes[at], npe, num_nodes, positions, positions, piece.source);
-    check_element_area(piece.elements[i], piece.coords[at], piece.coords[at + 1], piece.coords[at + 2], positions,
-                       piece.source);
+    const GlobalId e = piece.elements[i];
+    const std::int64_t file_id = piece.element_file_ids.empty() ? e + 1 : piece.element_file_ids[i];
+    check_element_nodes(e, file_id, &piece.nodes[at], npe, num_nodes, positions, piece.source);
+    check_element_area(e, file_id, piece.coords[at], piece.coords[at + 1], piece.coords[at + 2], piece.source);
   }
 }
 

@@ -5,6 +5,7 @@
 /// (docs/parallel.md, "Distributed set-up"). A piece comes from a mesh file read by ranges
 /// (meshio::read_exodus_piece) or from a whole mesh (element_range_piece); decomposition::migrate_elements makes
 /// the distributed mesh of it.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,9 @@ struct ElementPiece {
   /// The node-set entries of the nodes of these elements, and the element-set entries of these elements, by
   /// (member, set), each once.
   std::vector<SetEntry> node_set_entries, element_set_entries;
+  /// Per element: its id in the mesh file's element id map (FileIds); empty when the file numbers its elements by
+  /// position (empty on every rank then).
+  std::vector<std::int64_t> element_file_ids;
   std::string source;  ///< the mesh file, for messages
 };
 
@@ -81,7 +85,8 @@ ElementPiece piece_of_elements(const SerialMesh& mesh, const std::vector<GlobalI
 SetEntries set_entries_of(const SerialMesh& mesh, const std::vector<GlobalId>& elements);
 
 /// check_mesh's element checks on the elements of `piece` (nodes below num_nodes and distinct, vertices not
-/// collinear), naming elements and nodes by their positions + 1. InputError naming piece.source.
+/// collinear), naming elements as check_mesh does and nodes by their positions + 1. InputError naming
+/// piece.source.
 void check_piece_elements(const ElementPiece& piece, GlobalId num_nodes);
 
 /// Sorts entries by (member, set) and removes repeats; side entries by (element, local edge, set), repeats kept

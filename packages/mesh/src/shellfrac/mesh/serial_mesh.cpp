@@ -144,25 +144,27 @@ void check_ids_and_names(const std::vector<std::pair<int, std::string>>& ids_and
   }
 }
 
-void check_element_nodes(GlobalId e, const GlobalId* nodes, int nodes_per_element, GlobalId num_nodes,
-                         const FileIds& element_ids, const FileIds& node_ids, const std::string& source) {
+void check_element_nodes(GlobalId e, std::int64_t element_file_id, const GlobalId* nodes, int nodes_per_element,
+                         GlobalId num_nodes, const FileIds& node_ids, const std::string& source) {
   for (int a = 0; a < nodes_per_element; ++a) {
     const GlobalId n = nodes[a];
-    SHELLFRAC_INPUT_REQUIRE(n >= 0 && n < num_nodes, source << ": " << element_ids.element(e) << " refers to node "
-                                                            << n + 1 << " (a position in the file), but the mesh has "
+    SHELLFRAC_INPUT_REQUIRE(n >= 0 && n < num_nodes, source << ": " << element_label(e, element_file_id)
+                                                            << " refers to node " << n + 1
+                                                            << " (a position in the file), but the mesh has "
                                                             << num_nodes << " nodes");
     for (int c = 0; c < a; ++c)
-      SHELLFRAC_INPUT_REQUIRE(nodes[c] != n,
-                              source << ": " << element_ids.element(e) << " uses " << node_ids.node(n) << " twice");
+      SHELLFRAC_INPUT_REQUIRE(nodes[c] != n, source << ": " << element_label(e, element_file_id) << " uses "
+                                                    << node_ids.node(n) << " twice");
   }
 }
 
-void check_element_area(GlobalId e, const Vec3& a, const Vec3& b, const Vec3& c, const FileIds& element_ids,
+void check_element_area(GlobalId e, std::int64_t element_file_id, const Vec3& a, const Vec3& b, const Vec3& c,
                         const std::string& source) {
   // Zero-area (collinear) triangles have no normal and no stable time step.
   const double h2 = std::max({norm2(sub(b, a)), norm2(sub(c, b)), norm2(sub(a, c))});
   SHELLFRAC_INPUT_REQUIRE(0.5 * norm(cross(sub(b, a), sub(c, a))) > 1e-12 * h2,
-                          source << ": " << element_ids.element(e) << " is degenerate (its vertices are collinear)");
+                          source << ": " << element_label(e, element_file_id)
+                                 << " is degenerate (its vertices are collinear)");
 }
 
 void check_mesh(const SerialMesh& mesh) {
@@ -195,8 +197,9 @@ void check_mesh(const SerialMesh& mesh) {
     SHELLFRAC_INPUT_REQUIRE(b >= 0 && b < static_cast<int>(mesh.blocks.size()),
                             src << ": " << element.element(e) << " has no valid block");
     const GlobalId* nodes = &mesh.connectivity[static_cast<std::size_t>(e * mesh.nodes_per_element)];
-    check_element_nodes(e, nodes, mesh.nodes_per_element, nn, element, node, src);
-    check_element_area(e, mesh.coords[nodes[0]], mesh.coords[nodes[1]], mesh.coords[nodes[2]], element, src);
+    const std::int64_t file_id = element.empty() ? e + 1 : element.ids[static_cast<std::size_t>(e)];
+    check_element_nodes(e, file_id, nodes, mesh.nodes_per_element, nn, node, src);
+    check_element_area(e, file_id, mesh.coords[nodes[0]], mesh.coords[nodes[1]], mesh.coords[nodes[2]], src);
   }
   for (const auto& s : mesh.node_sets) check_sorted_in_range(s.nodes, nn, "node set", s.name, "node", src);
   for (const auto& s : mesh.element_sets) check_sorted_in_range(s.elements, ne, "element set", s.name, "element", src);

@@ -103,12 +103,13 @@ void check_mesh(const SerialMesh& mesh);
 void check_ids_and_names(const std::vector<std::pair<int, std::string>>& ids_and_names, const char* kind,
                          const std::string& source);
 
-/// check_mesh's checks of element e whose nodes are `nodes` (nodes_per_element of them): each below num_nodes
-/// and none twice. InputError naming `source`, the element and the node (by element_ids, node_ids).
-void check_element_nodes(GlobalId e, const GlobalId* nodes, int nodes_per_element, GlobalId num_nodes,
-                         const FileIds& element_ids, const FileIds& node_ids, const std::string& source);
+/// check_mesh's checks of element e, whose id in the mesh file is element_file_id (e + 1 without an id map) and
+/// whose nodes are `nodes` (nodes_per_element of them): each below num_nodes and none twice. InputError naming
+/// `source`, the element (element_label) and the node (node_ids).
+void check_element_nodes(GlobalId e, std::int64_t element_file_id, const GlobalId* nodes, int nodes_per_element,
+                         GlobalId num_nodes, const FileIds& node_ids, const std::string& source);
 /// check_mesh's check of element e whose vertices are at a, b, c: not collinear. InputError as above.
-void check_element_area(GlobalId e, const Vec3& a, const Vec3& b, const Vec3& c, const FileIds& element_ids,
+void check_element_area(GlobalId e, std::int64_t element_file_id, const Vec3& a, const Vec3& b, const Vec3& c,
                         const std::string& source);
 
 /// Serializes the mesh for a broadcast.

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <tuple>
 
 #include "shellfrac/core/error.hpp"
 #include "shellfrac/core/parallel.hpp"
@@ -40,6 +42,7 @@ class PieceReader {
 
   mesh::MeshPiece read() {
     parallel::on_all_then_agree([&] { read_own_ranges(); }, comm_);
+    check_element_id_map();
     deliver_set_entries();
     deliver_node_data();
     parallel::on_all_then_agree([&] { mesh::check_piece_elements(out_.piece, o_.num_nodes); }, comm_);
@@ -54,6 +57,7 @@ class PieceReader {
       o_ = std::move(outline);
       make_outline();
       read_elements();
+      read_element_id_map();
       read_node_share();
       read_side_set_slices();
       read_node_set_slices();
@@ -90,6 +94,58 @@ class PieceReader {
         p.blocks.push_back(static_cast<int>(b));
       }
     }
+  }
+
+  /// The ids the file's element id map gives this rank's elements (FileIds; read_exodus_mesh's checks and
+  /// messages). Dropped when the map is the identity on every rank: check_element_id_map.
+  void read_element_id_map() {
+    const Share mine = share_of(o_.num_elements, size_, rank_);
+    std::vector<std::int64_t>& ids = out_.piece.element_file_ids;
+    ids.assign(static_cast<std::size_t>(mine.size()), 0);
+    if (!ids.empty())
+      SHELLFRAC_EXO_INPUT_CHECK(ex_get_partial_id_map(id_, EX_ELEM_MAP, mine.first + 1, mine.size(), ids.data()),
+                                path_ << ": cannot read the element id map");
+    for (std::size_t i = 0; i < ids.size(); ++i)
+      SHELLFRAC_INPUT_REQUIRE(ids[i] > 0, path_ << ": element " << mine.first + GlobalId(i) + 1 << " has the id "
+                                                << ids[i] << " in the file's element id map; ids must be positive");
+  }
+
+  /// No element id given to two elements: each id goes to the rank of its share of the ids' range, which finds
+  /// the smallest repeated one, as the serial reader does. Collective.
+  void check_element_id_map() {
+    std::vector<std::int64_t>& ids = out_.piece.element_file_ids;
+    const GlobalId first = share_of(o_.num_elements, size_, rank_).first;
+    bool positions = true;
+    for (std::size_t i = 0; i < ids.size() && positions; ++i) positions = ids[i] == first + GlobalId(i) + 1;
+    if (!parallel::any(!positions, comm_)) {
+      std::vector<std::int64_t>().swap(ids);
+      return;
+    }
+    std::int64_t lo = std::numeric_limits<std::int64_t>::max(), hi = 0;
+    for (auto id : ids) lo = std::min(lo, id), hi = std::max(hi, id);
+    MPI_Allreduce(MPI_IN_PLACE, &lo, 1, MPI_INT64_T, MPI_MIN, comm_);
+    MPI_Allreduce(MPI_IN_PLACE, &hi, 1, MPI_INT64_T, MPI_MAX, comm_);
+    struct IdAt {
+      std::int64_t id;
+      GlobalId position;
+    };
+    std::vector<std::vector<IdAt>> send(static_cast<std::size_t>(size_));
+    for (std::size_t i = 0; i < ids.size(); ++i)
+      send[static_cast<std::size_t>(share_owner(ids[i] - lo, hi - lo + 1, size_))].push_back(
+          {ids[i], first + GlobalId(i)});
+    std::vector<int> counts;
+    std::vector<IdAt> mine = parallel::exchange(std::move(send), counts, comm_);
+    std::sort(mine.begin(), mine.end(),
+              [](const IdAt& x, const IdAt& y) { return std::tie(x.id, x.position) < std::tie(y.id, y.position); });
+    parallel::on_all_then_agree(
+        [&] {
+          for (std::size_t k = 1; k < mine.size(); ++k)
+            SHELLFRAC_INPUT_REQUIRE(mine[k].id != mine[k - 1].id,
+                                    path_ << ": the element id " << mine[k].id << " is given to elements "
+                                          << mine[k - 1].position + 1 << " and " << mine[k].position + 1
+                                          << " (positions in the file) by its element id map; ids must be unique");
+        },
+        comm_);
   }
 
   /// The coordinates of this rank's node share.

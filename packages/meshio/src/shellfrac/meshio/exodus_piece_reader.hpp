@@ -12,9 +12,10 @@
 ///    its element, or that holds its node's coordinates (which passes it on with the coordinates).
 /// The piece is the one mesh::element_range_piece gives of the whole mesh: the same values, bit for bit.
 ///
-/// The file is checked as read_exodus_mesh checks it, with the same messages, with two differences: messages
-/// number elements and nodes by their positions in the file, not by the file's id maps, which are not read (the
-/// results number them by position too); and a node no element uses is not checked.
+/// The file's element id map comes with the elements (ElementPiece::element_file_ids; dropped when it is the
+/// identity). The file is checked as read_exodus_mesh checks it, with the same messages, with two differences: the
+/// node id map is not read, so messages number nodes by their positions in the file and a bad node id map is not
+/// seen; and a node no element uses is not checked.
 #include <mpi.h>
 
 #include <string>
