@@ -3,7 +3,8 @@
 // SEACAS nem_slice (inertial) + nem_spread for 1-4 ranks (tests/data/nemesis/make_nemesis.sh). Each rank's piece
 // must be exactly mesh::piece_of_elements of the whole mesh read by read_exodus_mesh for the same elements (ids,
 // blocks, nodes, coordinate bits, side and node set entries), less the element sets, which nem_spread drops; the
-// pieces must hold every element once. A decomposition for another number of ranks is refused on every rank.
+// pieces must hold every element once. A decomposition for another number of ranks, and files of two meshes, are
+// refused on every rank.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -112,6 +113,15 @@ TEST(NemesisPieceReader, ADecompositionForOtherRanksIsRefusedOnEveryRank) {
   const std::string what = refusal(folder_with(files) + "/m.par");
   EXPECT_NE(what.find("decomposed for 2 ranks"), std::string::npos) << what;
   EXPECT_NE(what.find("the run has " + std::to_string(P) + " ranks"), std::string::npos) << what;
+}
+
+TEST(NemesisPieceReader, FilesOfTwoMeshesAreRefused) {
+  // Rank 0's file of the TRI6 mesh beside rank 1's file of the TRI3 mesh, both decomposed for 2 ranks.
+  if (parallel::size() != 2) GTEST_SKIP() << "the files are of 2-rank decompositions";
+  const std::string dir =
+      folder_with({{"m.par.2.0", "two_blocks_tri6.par.2.0"}, {"m.par.2.1", "two_blocks_tri3.par.2.1"}});
+  const std::string what = refusal(dir + "/m.par");
+  EXPECT_NE(what.find("m.par.2.1: its blocks, sets or element type differ from those of"), std::string::npos) << what;
 }
 
 TEST(NemesisPieceReader, AMissingDecompositionNamesThoseThere) {

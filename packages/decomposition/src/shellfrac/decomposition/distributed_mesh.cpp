@@ -230,6 +230,7 @@ DistributedMesh::DistributedMesh(const ElementPiece& piece, const LocalTopology&
       neighbor_edge_[le * 3 + k] = r.neighbor[k].local_edge;
     }
   }
+  std::vector<MigratedElement>().swap(m.elements);  // the largest of the set-up's buffers: gone before the maps
   for (const MigratedInterface& r : m.interfaces) {
     const auto& f = r.interface;
     LocalInterface li;
@@ -244,8 +245,10 @@ DistributedMesh::DistributedMesh(const ElementPiece& piece, const LocalTopology&
                       "DistributedMesh: interface " << r.id << " side not in the overlap");
     interfaces_.push_back(li);
   }
+  std::vector<MigratedInterface>().swap(m.interfaces);
   for (MigratedBoundary& b : m.boundary)
     boundary_.push_back({local_id(b.side.element), b.side.local_edge, std::move(b.side_sets)});
+  std::vector<MigratedBoundary>().swap(m.boundary);
   overlap_sets_ = std::move(m.sets);
   maps_ = make_maps(element_gid_, num_owned_, num_global_elements_, comm_);
 }

@@ -89,8 +89,20 @@ GlobalId checked_size(const ElementPiece& piece, const std::vector<int>& part, M
   const int P = parallel::size(comm);
   int npe[2] = {-piece.nodes_per_element, piece.nodes_per_element}, extreme[2] = {0, 0};
   MPI_Allreduce(npe, extreme, 2, MPI_INT, MPI_MAX, comm);
+  const bool file_ids = parallel::any(!piece.element_file_ids.empty(), comm);
   parallel::on_all_then_agree(
       [&] {
+        const auto sorted = [](const auto& v, auto key) {
+          return std::is_sorted(v.begin(), v.end(), [&](const auto& x, const auto& y) { return key(x) < key(y); });
+        };
+        const auto side_key = [](const SideEntry& x) { return x.element; };
+        const auto member_key = [](const mesh::SetEntry& x) { return x.member; };
+        SHELLFRAC_REQUIRE(sorted(piece.side_entries, side_key) && sorted(piece.node_set_entries, member_key) &&
+                              sorted(piece.element_set_entries, member_key),
+                          piece.source << ": the set entries of the piece are not sorted (mesh::ElementPiece)");
+        SHELLFRAC_REQUIRE(!file_ids || piece.element_file_ids.size() == piece.elements.size(),
+                          piece.source << ": a piece of " << piece.elements.size() << " elements with "
+                                       << piece.element_file_ids.size() << " file ids (another rank's piece has them)");
         SHELLFRAC_REQUIRE(-extreme[0] == extreme[1] && (extreme[1] == num_nodes_tri3 || extreme[1] == num_nodes_tri6),
                           piece.source << ": the ranks' pieces have " << -extreme[0] << " to " << extreme[1]
                                        << " nodes per element (3 or 6 on every rank)");
@@ -217,12 +229,6 @@ mesh::SetEntries migrated_sets(const ElementPiece& piece, const std::vector<std:
   std::vector<std::vector<mesh::SetEntry>> node_entries(P), element_entries(P);
   const auto side_key = [](const SideEntry& x) { return x.element; };
   const auto member_key = [](const mesh::SetEntry& x) { return x.member; };
-  const auto sorted = [](const auto& v, auto key) {
-    return std::is_sorted(v.begin(), v.end(), [&](const auto& x, const auto& y) { return key(x) < key(y); });
-  };
-  SHELLFRAC_REQUIRE(sorted(piece.side_entries, side_key) && sorted(piece.node_set_entries, member_key) &&
-                        sorted(piece.element_set_entries, member_key),
-                    piece.source << ": the set entries of the piece are not sorted (mesh::ElementPiece)");
   for (const auto& [i, rank] : destinations) {
     const GlobalId e = piece.elements[std::size_t(i)];
     const auto q = std::size_t(rank);
@@ -235,6 +241,7 @@ mesh::SetEntries migrated_sets(const ElementPiece& piece, const std::vector<std:
       node_entries[q].insert(node_entries[q].end(), n0, n1);
     }
   }
+  for (auto& entries : node_entries) mesh::sort_set_entries(entries);  // a node of several elements: once
   mesh::SetEntries out;
   std::vector<int> counts;
   out.side_entries = parallel::exchange(std::move(sides), counts, comm);
@@ -260,7 +267,7 @@ std::vector<MigratedElement> migrated_elements(const ElementPiece& piece, const 
     const std::size_t e = std::size_t(i);
     MigratedElement r;
     r.gid = piece.elements[e];
-    r.file_id = piece.element_file_ids.empty() ? 0 : piece.element_file_ids[e];
+    r.file_id = piece.element_file_ids.empty() ? 0 : piece.element_file_ids[e];  // sizes: checked_size
     r.owner = part[e];
     r.block = piece.blocks[e];
     for (std::size_t a = 0; a < npe; ++a)

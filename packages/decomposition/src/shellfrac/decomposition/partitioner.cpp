@@ -100,9 +100,14 @@ std::vector<int> partition_elements(const mesh::SerialMesh& mesh, const mesh::Ed
 std::vector<int> partition_piece(const mesh::ElementPiece& piece, const LocalTopology& topo, GlobalId num_elements,
                                  int nparts, const PartitionParams& params, MPI_Comm comm) {
   check_request(nparts, params);
-  SHELLFRAC_REQUIRE(topo.element_edges.size() == piece.elements.size(),
-                    "partition_piece: the topology has " << topo.element_edges.size() << " elements but the piece has "
-                                                         << piece.elements.size());
+  parallel::on_all_then_agree(
+      [&] {
+        SHELLFRAC_REQUIRE(topo.element_edges.size() == piece.elements.size(),
+                          "partition_piece: the topology has " << topo.element_edges.size()
+                                                               << " elements but the piece has "
+                                                               << piece.elements.size());
+      },
+      comm);
   if (trivial_part(0, num_elements, nparts) >= 0) {
     std::vector<int> part;
     for (GlobalId e : piece.elements) part.push_back(trivial_part(e, num_elements, nparts));

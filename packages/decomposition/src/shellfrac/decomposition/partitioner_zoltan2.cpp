@@ -152,6 +152,8 @@ std::vector<int> partition_zoltan2(const ZoltanInput& in, int nparts, const std:
         try {
           auto tcomm = Teuchos::rcp(new Teuchos::MpiComm<int>(sub));
           local = solve_on(in, nparts, algorithm, imbalance_tolerance, tcomm);
+          for (int p : local)
+            SHELLFRAC_REQUIRE(p >= 0 && p < nparts, "Zoltan2 returned part " << p << " out of [0, " << nparts << ")");
         } catch (const Error&) {
           throw;
         } catch (const std::exception& e) {
@@ -161,8 +163,6 @@ std::vector<int> partition_zoltan2(const ZoltanInput& in, int nparts, const std:
       },
       comm);
   if (sub != MPI_COMM_NULL) MPI_Comm_free(&sub);
-  for (int p : local)
-    SHELLFRAC_REQUIRE(p >= 0 && p < nparts, "Zoltan2 returned part " << p << " out of [0, " << nparts << ")");
   return local;
 }
 

@@ -21,7 +21,7 @@ struct Share {
   GlobalId size() const { return end - first; }
 };
 
-GlobalId share_width(GlobalId n, int P) { return std::max<GlobalId>(1, (n + P - 1) / P); }
+GlobalId share_width(GlobalId n, int P) { return std::max<GlobalId>(1, n / P + (n % P != 0)); }  // no overflow
 
 Share share_of(GlobalId n, int P, int r) {
   const GlobalId w = share_width(n, P);
@@ -251,7 +251,7 @@ class PieceReader {
     std::vector<std::vector<GlobalId>> requests(static_cast<std::size_t>(size_));
     for (GlobalId n : wanted) requests[static_cast<std::size_t>(share_owner(n, o_.num_nodes, size_))].push_back(n);
     std::vector<int> counts;
-    const std::vector<GlobalId> asked = parallel::exchange(std::move(requests), counts, comm_);
+    std::vector<GlobalId> asked = parallel::exchange(std::move(requests), counts, comm_);
 
     // Answers in the order asked: requests from each rank are ascending, so are the node set entries.
     const GlobalId first = share_of(o_.num_nodes, size_, rank_).first;
@@ -268,6 +268,8 @@ class PieceReader {
           entries[static_cast<std::size_t>(q)].push_back(*it);
       }
     std::vector<Vec3>().swap(share_coords_);
+    std::vector<mesh::SetEntry>().swap(share_node_set_entries_);
+    std::vector<GlobalId>().swap(asked);
     const std::vector<Vec3> wanted_coords = parallel::exchange(std::move(coords), counts, comm_);
     p.node_set_entries = parallel::exchange(std::move(entries), counts, comm_);
     p.coords.resize(p.nodes.size());

@@ -13,7 +13,8 @@
 /// The piece is the one mesh::element_range_piece gives of the whole mesh: the same values, bit for bit.
 ///
 /// The file's element id map comes with the elements (ElementPiece::element_file_ids; dropped when it is the
-/// identity). The file is checked as read_exodus_mesh checks it, with the same messages, with two differences: the
+/// identity). The file is checked as read_exodus_mesh checks it, with the same message for a file with one error
+/// (a file with several may be refused for another of them first), with two differences: the
 /// node id map is not read, so messages number nodes by their positions in the file and a bad node id map is not
 /// seen; and a node no element uses is not checked.
 #include <mpi.h>

@@ -49,6 +49,7 @@ class NemesisPieceReader {
 
   mesh::MeshPiece read() {
     parallel::on_all_then_agree([&] { read_own_file(); }, comm_);
+    check_same_outline();
     parallel::on_all_then_agree([&] { mesh::check_piece_elements(out_.piece, out_.outline.num_nodes); }, comm_);
     return std::move(out_);
   }
@@ -67,6 +68,26 @@ class NemesisPieceReader {
       read_elements();
       read_sets();
     });
+  }
+
+  /// Every rank's file names the same blocks and sets, with the same ids, as rank 0's. Collective.
+  void check_same_outline() const {
+    const mesh::MeshOutline& o = out_.outline;
+    std::string mine = std::to_string(o.nodes_per_element);
+    const auto add = [&](const auto& labels) {
+      mine += "|" + std::to_string(labels.size());
+      for (const auto& l : labels) mine += "|" + std::to_string(l.id) + ":" + l.name;
+    };
+    add(o.blocks), add(o.node_sets), add(o.side_sets), add(o.element_sets);
+    std::string first = mine;
+    parallel::broadcast(first, 0, comm_);
+    parallel::on_all_then_agree(
+        [&] {
+          SHELLFRAC_INPUT_REQUIRE(mine == first, path_ << ": its blocks, sets or element type differ from those of "
+                                                       << nemesis_file_name(base_, size_, 0)
+                                                       << "; the files are not of one decomposition");
+        },
+        comm_);
   }
 
   /// The Nemesis information: for this number of ranks, one rank per file, the mesh's counts, and the same blocks
