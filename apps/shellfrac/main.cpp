@@ -33,6 +33,7 @@
 #include "shellfrac/core/version.hpp"
 #include "shellfrac/solver/setup/stop_signals.hpp"
 #include "shellfrac/solver/simulation.hpp"
+#include "shellfrac/solver/step/central_difference.hpp"
 
 namespace {
 
@@ -189,18 +190,21 @@ int run(int argc, char** argv) {
       std::cout << "  stopped by " << out.stop_signal << " at step " << std::max(out.restart_step, 0L) + out.steps << "; continue with --restart "
                 << out.checkpoint << "\n";
     const long run_steps = std::max(out.restart_step, 0L) + out.steps;  // the run's, across restarts
+    const shellfrac::solver::CentralDifference::Relaxation relaxation;   // its stopping test's constants
     if (out.relaxed && out.at_floor)
       std::cout << "  static equilibrium reached after " << run_steps << " steps at the residual's round-off floor: "
                 << "the relative residual stopped falling at " << out.best_residual << " (above 'Relaxation "
                 << "Tolerance': the load is small against the stiffness) while the displacement changed by "
-                << out.displacement_change << " of itself over 100 kinetic-energy peaks\n";
+                << out.displacement_change << " of itself over " << relaxation.stall_peaks
+                << " kinetic-energy peaks\n";
     else if (out.relaxed)
       std::cout << "  static equilibrium reached after " << run_steps << " steps: relative residual "
                 << out.residual << "\n";
     else if (out.stalled)
       std::cerr << "shellfrac: warning: the static relaxation stalled at step " << run_steps
-                << ": its relative residual has not fallen below 0.99 of its smallest value " << out.best_residual
-                << " over 100 kinetic-energy peaks while the displacement still changed by "
+                << ": its relative residual has not fallen below " << relaxation.stall_drop
+                << " of its smallest value " << out.best_residual << " over " << relaxation.stall_peaks
+                << " kinetic-energy peaks while the displacement still changed by "
                 << out.displacement_change << " of itself (no equilibrium: a mechanism, an instability, or a "
                 << "tolerance below what the motion can settle to); the results are written; exit code 5\n";
     else if (out.static_relaxation && !out.stopped_by_signal)
