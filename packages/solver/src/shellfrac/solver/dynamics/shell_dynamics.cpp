@@ -157,7 +157,7 @@ bool ShellDynamics::relaxed() const { return impl_->integrator.relaxed(); }
 double ShellDynamics::relaxation_residual() const { return impl_->integrator.relaxation_residual(); }
 bool ShellDynamics::relaxation_stalled() const { return impl_->integrator.relaxation_stalled(); }
 bool ShellDynamics::relaxed_at_floor() const { return impl_->integrator.relaxed_at_floor(); }
-double ShellDynamics::best_relaxation_residual() const { return impl_->integrator.best_relaxation_residual(); }
+double ShellDynamics::best_relaxation_residual() const { return impl_->state.relaxation.best_residual; }
 double ShellDynamics::relaxation_displacement_change() const {
   return impl_->integrator.relaxation_displacement_change();
 }

@@ -184,8 +184,7 @@ CentralDifference::CentralDifference(ShellModel& model, Constraints& constraints
       times_(times),
       alpha_(mass_damping),
       relaxation_(relaxation),
-      residual_(std::numeric_limits<double>::quiet_NaN()),
-      best_residual_(std::numeric_limits<double>::infinity()) {
+      residual_(std::numeric_limits<double>::quiet_NaN()) {
   director_rate_predicted_.assign(model.owned);
   x_start_.assign(model.owned);
   finite_.assign(std::size_t(model.owned), 1);
@@ -274,12 +273,12 @@ void CentralDifference::watch_for_stall(ShellState& s) {
   const double u = displacement_norm(s);
   RelaxationProgress& p = s.relaxation;
   if (residual_ < relaxation_.stall_drop * p.best_residual) {
-    best_residual_ = p.best_residual = residual_;
+    p.best_residual = residual_;
     p.peaks_since_best = 0;
     p.u_low = p.u_high = u;
     return;
   }
-  best_residual_ = p.best_residual = std::min(p.best_residual, residual_);
+  p.best_residual = std::min(p.best_residual, residual_);
   p.u_low = std::min(p.u_low, u), p.u_high = std::max(p.u_high, u);
   if (++p.peaks_since_best < relaxation_.stall_peaks) return;
   displacement_change_ = (p.u_high - p.u_low) / p.u_high;

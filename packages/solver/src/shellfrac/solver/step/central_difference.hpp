@@ -54,11 +54,11 @@ class CentralDifference {
   bool relaxed() const { return relaxed_; }
   double relaxation_residual() const { return residual_; }
   /// Static relaxation (theory.md §7.5): whether the residual stopped falling while the displacement still changed
-  /// (stalled: no equilibrium), whether it stopped falling at a settled displacement (relaxed() too: the
-  /// equilibrium at the residual's round-off floor), and the smallest residual.
+  /// (stalled: no equilibrium), and whether it stopped falling at a settled displacement (relaxed() too: the
+  /// equilibrium at the residual's round-off floor). The smallest residual is the state's
+  /// (ShellState::relaxation.best_residual), which a restart restores.
   bool relaxation_stalled() const { return stalled_; }
   bool relaxed_at_floor() const { return at_floor_; }
-  double best_relaxation_residual() const { return best_residual_; }
   /// The change of the displacement norm over the peaks since the residual last fell, relative to it.
   double relaxation_displacement_change() const { return displacement_change_; }
 
@@ -90,7 +90,7 @@ class CentralDifference {
   Relaxation relaxation_;
   // Static relaxation: the outcome of the last test (where the relaxation stands is in ShellState::relaxation).
   bool relaxed_ = false;
-  double residual_, best_residual_, displacement_change_ = 0;
+  double residual_, displacement_change_ = 0;
   bool stalled_ = false, at_floor_ = false;
   // At t_n, for the work accounts: the positions, and the external forces of the elements loaded at t_n only
   // (fext_start_slot_[le]: the row of owned element le in fext_start_, -1 if its forces were all zero). The
