@@ -19,6 +19,7 @@
 #include <vector>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "cracked_strip.hpp"
 #include "deck_test_util.hpp"
@@ -142,6 +143,43 @@ std::string fresh(const std::string& dir) {
   return dir;
 }
 
+/// The communicator of the first n ranks of MPI_COMM_WORLD (MPI_COMM_NULL on the others), freed with it.
+class FirstRanks {
+ public:
+  explicit FirstRanks(int n) {
+    MPI_Comm_split(MPI_COMM_WORLD, parallel::rank() < n ? 0 : MPI_UNDEFINED, parallel::rank(), &comm_);
+  }
+  ~FirstRanks() {
+    if (comm_ != MPI_COMM_NULL) MPI_Comm_free(&comm_);
+  }
+  FirstRanks(const FirstRanks&) = delete;
+  FirstRanks& operator=(const FirstRanks&) = delete;
+  MPI_Comm comm() const { return comm_; }
+
+ private:
+  MPI_Comm comm_ = MPI_COMM_NULL;
+};
+
+/// The rank counts (written on, restarted on) a test at this many ranks restarts across.
+std::vector<std::pair<int, int>> rank_changes() {
+  switch (parallel::size()) {
+    case 3: return {{3, 2}, {1, 3}};
+    case 4: return {{4, 3}, {4, 1}};
+    default: return {};
+  }
+}
+
+/// A run broken on `written` ranks and restarted on `restarted`, in root/<written>_to_<restarted>, equals the
+/// reference run.
+void expect_same_across(const std::string& root, const std::string& ref, int written, int restarted,
+                        const Frames& frames, const std::string& what) {
+  const FirstRanks first(written), second(restarted);
+  const auto dir = fresh(root + "/" + std::to_string(written) + "_to_" + std::to_string(restarted));
+  broken_run(dir, first.comm(), second.comm(), frames);
+  expect_same(ref, dir,
+              "written on " + std::to_string(written) + " ranks, restarted on " + std::to_string(restarted) + what);
+}
+
 }  // namespace
 
 TEST(Restart, ContinuesBitwiseThroughCrackActivation) {
@@ -161,30 +199,7 @@ TEST(Restart, ContinuesBitwiseThroughCrackActivation) {
     EXPECT_LT(t_act, 10.5e-6);
     EXPECT_EQ(rows.back()[column(hd, "num_separated_edges")], 1.0);
   }
-  if (parallel::size() == 3) {
-    MPI_Comm two, self;
-    MPI_Comm_split(MPI_COMM_WORLD, parallel::rank() < 2 ? 0 : MPI_UNDEFINED, parallel::rank(), &two);
-    MPI_Comm_split(MPI_COMM_WORLD, parallel::rank() == 0 ? 0 : MPI_UNDEFINED, 0, &self);
-    const auto a = fresh(root + "/three_to_two"), c = fresh(root + "/one_to_three");
-    broken_run(a, MPI_COMM_WORLD, two);
-    expect_same(ref, a, "written on 3 ranks, restarted on 2");
-    broken_run(c, self, MPI_COMM_WORLD);
-    expect_same(ref, c, "written on 1 rank, restarted on 3");
-    if (two != MPI_COMM_NULL) MPI_Comm_free(&two);
-    if (self != MPI_COMM_NULL) MPI_Comm_free(&self);
-  }
-  if (parallel::size() == 4) {
-    MPI_Comm three, self;
-    MPI_Comm_split(MPI_COMM_WORLD, parallel::rank() < 3 ? 0 : MPI_UNDEFINED, parallel::rank(), &three);
-    MPI_Comm_split(MPI_COMM_WORLD, parallel::rank() == 0 ? 0 : MPI_UNDEFINED, 0, &self);
-    const auto a = fresh(root + "/four_to_three"), c = fresh(root + "/four_to_one");
-    broken_run(a, MPI_COMM_WORLD, three);
-    expect_same(ref, a, "written on 4 ranks, restarted on 3");
-    broken_run(c, MPI_COMM_WORLD, self);
-    expect_same(ref, c, "written on 4 ranks, restarted on 1");
-    if (three != MPI_COMM_NULL) MPI_Comm_free(&three);
-    if (self != MPI_COMM_NULL) MPI_Comm_free(&self);
-  }
+  for (const auto& [written, restarted] : rank_changes()) expect_same_across(root, ref, written, restarted, {}, "");
 }
 
 // A free rigid body's motion is state: the ball of Frames::ball is in contact with the strip from about 5 us, so
@@ -209,14 +224,7 @@ TEST(Restart, ContinuesBitwiseWithAFreeRigidBodyInContact) {
     EXPECT_LT(first, 10.5e-6);
     EXPECT_GT(last, 10.5e-6);
   }
-  if (parallel::size() == 3) {
-    MPI_Comm two;
-    MPI_Comm_split(MPI_COMM_WORLD, parallel::rank() < 2 ? 0 : MPI_UNDEFINED, parallel::rank(), &two);
-    const auto a = fresh(root + "/three_to_two");
-    broken_run(a, MPI_COMM_WORLD, two, frames);
-    expect_same(ref, a, "written on 3 ranks, restarted on 2, ball in contact");
-    if (two != MPI_COMM_NULL) MPI_Comm_free(&two);
-  }
+  if (parallel::size() == 3) expect_same_across(root, ref, 3, 2, frames, ", ball in contact");
 }
 
 TEST(Restart, ExactOutputTimesLandOnEveryFrameAndEndTime) {
