@@ -95,8 +95,8 @@ GlobalId checked_size(const ElementPiece& piece, const std::vector<int>& part, M
         const auto sorted = [](const auto& v, auto key) {
           return std::is_sorted(v.begin(), v.end(), [&](const auto& x, const auto& y) { return key(x) < key(y); });
         };
-        const auto side_key = [](const SideEntry& x) { return x.element; };
-        const auto member_key = [](const mesh::SetEntry& x) { return x.member; };
+        const auto side_key = [](const SideEntry& x) { return std::tie(x.element, x.local_edge, x.side_set); };
+        const auto member_key = [](const mesh::SetEntry& x) { return std::tie(x.member, x.set); };
         SHELLFRAC_REQUIRE(sorted(piece.side_entries, side_key) && sorted(piece.node_set_entries, member_key) &&
                               sorted(piece.element_set_entries, member_key),
                           piece.source << ": the set entries of the piece are not sorted (mesh::ElementPiece)");
@@ -158,10 +158,7 @@ class KnownParts {
 /// owner, with the side sets that name it (as (id, side set) pairs). Collective.
 std::vector<MigratedBoundary> migrated_boundary(const ElementPiece& piece, const LocalTopology& topo,
                                                 const KnownParts& parts, MPI_Comm comm) {
-  std::vector<SideEntry> sides = piece.side_entries;
-  std::sort(sides.begin(), sides.end(), [](const SideEntry& x, const SideEntry& y) {
-    return std::tie(x.element, x.local_edge, x.side_set) < std::tie(y.element, y.local_edge, y.side_set);
-  });
+  const std::vector<SideEntry>& sides = piece.side_entries;  // by (element, local edge, set): checked_size
   struct BoundaryWire {
     GlobalId id;
     mesh::ElementEdge side;
